@@ -1,0 +1,264 @@
+"""The `brdf-lab` command line."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import importlib
+import importlib.util
+import sys
+from pathlib import Path
+
+from lab.models import ModelError
+
+# Feature packages add their own sub-commands through a `register(subparsers)` function.
+FEATURE_CLIS = ["lab.app.cli", "lab.grading.cli", "lab.web.cli", "lab.measured.cli"]
+VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
+
+
+class UsageError(Exception):
+    """Bad input from the user: printed as one line, exit status 2."""
+
+
+def parse_pair(text: str, what: str) -> tuple[float, float]:
+    try:
+        first, second = (float(x) for x in text.split(","))
+    except ValueError:
+        raise UsageError(f"{what} {text!r} is malformed: write THETA,PHI in degrees, e.g. 30,0") from None
+    return first, second
+
+
+def parse_light(text: str) -> tuple[float, float]:
+    theta, phi = parse_pair(text, "--light")
+    if not 0.0 <= theta <= 90.0:
+        raise UsageError(f"--light theta {theta:g} is outside 0..90 degrees")
+    return theta, phi
+
+
+def check_output(path: str) -> Path:
+    """A path we can write, or a UsageError saying why not."""
+    out = Path(path)
+    parent = out.parent if str(out.parent) else Path(".")
+    if out.is_dir():
+        raise UsageError(f"output {out} is a directory: give a file name")
+    if not parent.is_dir():
+        raise UsageError(f"cannot write {out}: folder {parent} does not exist")
+    try:
+        with open(out, "ab"):
+            pass
+    except OSError as err:
+        raise UsageError(f"cannot write {out}: {err.strerror}") from None
+    return out
+
+
+def load(name: str, settings: list[str]):
+    from lab.models import load_model
+
+    model = load_model(name)
+    return model, model.parse_settings(settings or [])
+
+
+# -- commands -------------------------------------------------------------------------------
+def cmd_models(args) -> int:
+    from lab.glsl import label_of
+    from lab.models import load_model, model_names
+
+    for name in model_names():
+        model = load_model(name)
+        kind = "  (delta)" if model.delta else ""
+        print(f"{name}{kind}  -  {model.title}\n  file: {label_of(model.path)}")
+        for p in model.params.values():
+            if p.kind == "float":
+                spec = f"float [{p.minimum:g}, {p.maximum:g}] default {p.default:g} ({p.scale})"
+            elif p.kind == "color":
+                spec = "color default " + ",".join(f"{c:g}" for c in p.default)
+            elif p.kind == "bool":
+                spec = f"bool default {int(p.default)}"
+            else:
+                spec = f"enum {'|'.join(p.choices)} default {p.default}"
+            print(f"    {p.name:13s} {spec}  -  {p.doc}")
+    return 0
+
+
+def cmd_render(args) -> int:
+    from lab import plots
+    from lab.render import Renderer
+
+    model, values = load(args.model, args.set)
+    theta, phi = parse_light(args.light)
+    out = check_output(args.output)
+    renderer = Renderer()
+    if args.view == "sphere":
+        image = renderer.sphere(model, values, (theta, phi), size=args.size)
+        plots.save_image(image, out, exposure=args.exposure)
+    else:
+        plots.save_view(renderer, args.view, model, values, theta, phi, out, size=args.size)
+    print(f"wrote {out}")
+    return 0
+
+
+def read_pairs(path: str):
+    import numpy as np
+
+    required = ["theta_i", "phi_i", "theta_o", "phi_o"]
+    try:
+        handle = open(path, newline="", encoding="utf-8")
+    except OSError as err:
+        raise UsageError(f"cannot read {path}: {err.strerror}") from None
+    with handle:
+        reader = csv.reader(handle)
+        header = [h.strip() for h in next(reader, [])]
+        missing = [c for c in required if c not in header]
+        if missing:
+            raise UsageError(
+                f"{path}:1: missing column(s) {', '.join(missing)}: the header must be "
+                "theta_i,phi_i,theta_o,phi_o (degrees)"
+            )
+        columns = [header.index(c) for c in required]
+        rows = []
+        for number, row in enumerate(reader, start=2):
+            if not any(cell.strip() for cell in row):
+                continue
+            try:
+                rows.append([float(row[c]) for c in columns])
+            except (ValueError, IndexError):
+                raise UsageError(f"{path}:{number}: expected four numbers, got {','.join(row)!r}") from None
+    angles = np.array(rows, dtype=np.float64).reshape(-1, 4)
+    if not np.isfinite(angles).all():
+        bad = int(np.argwhere(~np.isfinite(angles))[0][0]) + 2
+        raise UsageError(f"{path}:{bad}: angles must be finite numbers")
+    return angles
+
+
+def cmd_eval(args) -> int:
+    import numpy as np
+
+    model, values = load(args.model, args.set)
+    angles = read_pairs(args.input)
+    out = check_output(args.output) if args.output else None
+    if model.delta:
+        print(
+            f"note: {model.name} is an ideal specular (delta) BRDF; its value is 0 off the "
+            "mirror direction and infinite on it, so eval returns 0.",
+            file=sys.stderr,
+        )
+    if args.cpu:
+        from lab import reference
+
+        result = reference.brdf_angles(model.name, values, angles)
+    else:
+        from lab.render import Renderer
+
+        result = Renderer().eval_angles(model, values, angles)
+    result = np.asarray(result, dtype=np.float64)
+    handle = open(out, "w", newline="", encoding="utf-8") if out else sys.stdout
+    try:
+        writer = csv.writer(handle)
+        writer.writerow(["r", "g", "b"])
+        writer.writerows([[repr(float(v)) for v in row] for row in result])
+    finally:
+        if out:
+            handle.close()
+            print(f"wrote {len(result)} rows to {out}", file=sys.stderr)
+    return 0
+
+
+def cmd_figures(args) -> int:
+    from lab import figures
+
+    outdir = Path(args.outdir)
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise UsageError(f"cannot create {outdir}: {err.strerror}") from None
+    for path in figures.lecture_figures(outdir):
+        print(f"wrote {path}")
+    return 0
+
+
+def cmd_gallery(args) -> int:
+    from lab import figures
+
+    outdir = Path(args.outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    path = figures.gallery(outdir)
+    print(f"wrote the gallery of every model to {path.resolve()}")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from lab import bench
+
+    bench.run(quick=args.quick)
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="brdf-lab", description="A teaching lab for BRDFs: one GLSL shader per model."
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    p = sub.add_parser("models", help="list the models, their parameters and files")
+    p.set_defaults(func=cmd_models)
+
+    p = sub.add_parser("render", help="render a view of a model to PNG")
+    p.add_argument("model", help="model name (see 'brdf-lab models') or a .glsl file")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE", help="parameter value")
+    p.add_argument("--light", default="45,0", metavar="THETA,PHI", help="light direction (deg)")
+    p.add_argument("--view", choices=VIEWS, default="sphere")
+    p.add_argument("--size", type=int, default=512, help="image size in pixels")
+    p.add_argument("--exposure", type=float, default=0.0, help="exposure in stops (sphere)")
+    p.add_argument("-o", "--output", required=True, metavar="OUT.png")
+    p.set_defaults(func=cmd_render)
+
+    p = sub.add_parser("eval", help="BRDF values for direction pairs from a CSV file")
+    p.add_argument("model")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE")
+    p.add_argument("--in", dest="input", required=True, metavar="PAIRS.csv")
+    p.add_argument("--out", dest="output", metavar="VALUES.csv")
+    p.add_argument("--cpu", action="store_true", help="use the numpy reference, not the GPU")
+    p.set_defaults(func=cmd_eval)
+
+    p = sub.add_parser("figures", help="render the lecture's figures from the real shaders")
+    p.add_argument("outdir")
+    p.set_defaults(func=cmd_figures)
+
+    p = sub.add_parser("gallery", help="render every model (sphere and polar lobe) to a folder")
+    p.add_argument("outdir", nargs="?", default="out/gallery")
+    p.set_defaults(func=cmd_gallery)
+
+    p = sub.add_parser("bench", help="print rendering benchmarks")
+    p.add_argument("--quick", action="store_true", help="fewer repetitions")
+    p.set_defaults(func=cmd_bench)
+
+    for module_name in FEATURE_CLIS:
+        if importlib.util.find_spec(module_name) is not None:
+            importlib.import_module(module_name).register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    from lab.glsl import ShaderCompileError
+
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        if importlib.util.find_spec("lab.app.cli") is not None:
+            args = parser.parse_args(["app", *(argv or [])])
+        else:
+            args = parser.parse_args(["gallery"])
+    try:
+        return args.func(args)
+    except (UsageError, ModelError) as err:
+        print(f"brdf-lab: error: {err}", file=sys.stderr)
+        return 2
+    except ShaderCompileError as err:
+        print(f"brdf-lab: error: the shader does not compile:\n{err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,36 @@
+"""The one place that creates OpenGL contexts."""
+
+from __future__ import annotations
+
+import moderngl
+
+_offscreen: moderngl.Context | None = None
+
+
+class GLUnavailable(RuntimeError):
+    """No OpenGL 3.3 context could be made; the message says what to install."""
+
+
+def get_context(window: bool = False) -> moderngl.Context:
+    """An OpenGL >= 3.3 context.
+
+    `window=True` wraps the context a Qt or GLFW window has made current; otherwise a
+    standalone EGL context is created once per process and shared (no display needed).
+    """
+    global _offscreen
+    if window:
+        return moderngl.create_context(require=330)
+    if _offscreen is None:
+        try:
+            _offscreen = moderngl.create_context(standalone=True, backend="egl", require=330)
+        except Exception as err:  # glcontext raises plain Exceptions with the EGL error
+            raise GLUnavailable(
+                f"cannot create an offscreen OpenGL 3.3 context through EGL ({err}). "
+                "Install Mesa's EGL/GL drivers: apt-get install libegl1 libgl1-mesa-dri"
+            ) from None
+    return _offscreen
+
+
+def describe(ctx: moderngl.Context) -> str:
+    """Renderer and version, e.g. 'llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5'."""
+    return f"{ctx.info['GL_RENDERER']}, OpenGL {ctx.version_code // 100}.{ctx.version_code % 100 // 10}"

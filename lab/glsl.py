@@ -1,0 +1,199 @@
+"""Assemble complete GLSL programs from a model, its terms and a view template.
+
+Every line of an assembled program remembers the file and line it came from, so a
+compile error is reported against the model file the user edits, whatever driver
+(Mesa, NVIDIA, AMD, Apple, ANGLE) produced it.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lab.models import SHADER_DIR, Model, ModelError, Value
+
+TARGETS = ("330", "300es")
+VIEW_DIR = SHADER_DIR / "views"
+
+VERSION_LINES = {
+    "330": ["#version 330 core"],
+    "300es": ["#version 300 es", "precision highp float;", "precision highp int;"],
+}
+
+# A vertex shader shared by every view: one triangle that covers the viewport.
+VERTEX_SHADER = """
+void main() {
+    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+"""
+
+# Directives a model file may not contain: the host writes them.
+FORBIDDEN_DIRECTIVE = re.compile(r"^\s*#\s*(version|extension|include)\b")
+
+# Where drivers put the line number in an info log; the first group is the line.
+LOG_LINE_PATTERNS = [
+    re.compile(r"^\s*(?:ERROR|WARNING):\s*\d+:(\d+):\s*(.*)$"),  # ANGLE, Apple, glslang
+    re.compile(r"^\s*\d+:(\d+)\(\d+\):\s*(.*)$"),  # Mesa
+    re.compile(r"^\s*\d+\((\d+)\)\s*:\s*(.*)$"),  # NVIDIA
+]
+
+
+@dataclass
+class Source:
+    """An assembled shader: its text and, for each line, where that line came from."""
+
+    origins: list[tuple[str, int]] = field(default_factory=list)
+    lines: list[str] = field(default_factory=list)
+
+    def add(self, text: str, label: str, first_line: int = 1) -> None:
+        for offset, line in enumerate(text.splitlines()):
+            self.lines.append(line)
+            self.origins.append((label, first_line + offset))
+
+    @property
+    def text(self) -> str:
+        return "\n".join(self.lines) + "\n"
+
+    def origin(self, line: int) -> tuple[str, int]:
+        """(file, line) of the assembled program's 1-based `line`."""
+        if 1 <= line <= len(self.origins):
+            return self.origins[line - 1]
+        return ("<assembled>", line)
+
+
+@dataclass
+class CompileError:
+    file: str
+    line: int
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}: {self.message}"
+
+
+class ShaderCompileError(Exception):
+    """The driver rejected a program; `errors` point into the original files."""
+
+    def __init__(self, errors: list[CompileError], log: str):
+        self.errors = errors
+        self.log = log
+        super().__init__("\n".join(str(e) for e in errors) or log.strip())
+
+
+def label_of(path: Path) -> str:
+    """A short name for messages: relative to the project for library files."""
+    try:
+        return str(path.resolve().relative_to(SHADER_DIR.parent))
+    except ValueError:
+        return str(path)
+
+
+def check_portable(code: str, label: str) -> None:
+    """Reject directives that the host owns (they would break the assembled program)."""
+    for number, line in enumerate(code.splitlines(), start=1):
+        match = FORBIDDEN_DIRECTIVE.match(line)
+        if match:
+            raise ModelError(
+                f"remove the '#{match.group(1)}' line: the lab adds version lines itself and "
+                "shared terms are included with a '// @include' header line",
+                label,
+                number,
+            )
+
+
+def uniform_declarations(model: Model, enums: dict[str, str] | None = None) -> list[str]:
+    """Uniforms for the parameters; enums become constants (one program per choice)."""
+    lines = []
+    for p in model.params.values():
+        if p.kind == "enum":
+            for index, choice in enumerate(p.choices):
+                lines.append(f"const int {p.name.upper()}_{choice.upper()} = {index};")
+            chosen = (enums or {}).get(p.name, p.default)
+            lines.append(f"const int {p.name} = {p.name.upper()}_{chosen.upper()};")
+        else:
+            glsl_type = {"float": "float", "color": "vec3", "bool": "bool"}[p.kind]
+            lines.append(f"uniform {glsl_type} {p.name};")
+    return lines
+
+
+def _add_include(source: Source, relative: str, seen: set[str], model: Model, line: int) -> None:
+    path = (SHADER_DIR / relative).resolve()
+    if relative in seen:
+        return
+    if not path.is_file() or SHADER_DIR.resolve() not in path.parents:
+        raise ModelError(f"@include {relative}: no such file under shaders/", label_of(model.path), line)
+    seen.add(relative)
+    source.add(path.read_text(encoding="utf-8"), label_of(path))
+
+
+def assemble_fragment(
+    model: Model,
+    view: str,
+    target: str = "330",
+    preamble: str = "",
+    enums: dict[str, str] | None = None,
+) -> Source:
+    """The fragment shader for `model` in `view` (a template in shaders/views).
+
+    `preamble` holds view constants (such as the light count); `enums` picks each enum
+    parameter's choice, compiled in as a constant so unused branches cost nothing.
+    """
+    if target not in TARGETS:
+        raise ValueError(f"unknown GLSL target {target!r}: use one of {TARGETS}")
+    model_label = label_of(model.path)
+    check_portable(model.code, model_label)
+    source = Source()
+    source.add("\n".join(VERSION_LINES[target]), "<version>")
+    if preamble:
+        source.add(preamble, "<preamble>")
+    seen: set[str] = set()
+    _add_include(source, "terms/common.glsl", seen, model, 1)
+    source.add("\n".join(uniform_declarations(model, enums)), f"{model_label} (parameters)")
+    header_lines = {inc: i for i, inc in enumerate(model.includes, start=1)}
+    for include in model.includes:
+        _add_include(source, include, seen, model, header_lines[include])
+    source.add(model.code, model_label)
+    source.add(f"const bool IS_DELTA = {'true' if model.delta else 'false'};", "<host>")
+    if not model.delta:
+        source.add(
+            "vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }",
+            "<host>",
+        )
+    view_path = VIEW_DIR / f"{view}.glsl"
+    source.add(view_path.read_text(encoding="utf-8"), label_of(view_path))
+    return source
+
+
+def vertex_source(target: str = "330") -> str:
+    return "\n".join(VERSION_LINES[target]) + "\n" + VERTEX_SHADER
+
+
+def translate_log(log: str, source: Source) -> list[CompileError]:
+    """Driver info log -> errors located in the original files."""
+    errors = []
+    for raw in log.splitlines():
+        for pattern in LOG_LINE_PATTERNS:
+            match = pattern.match(raw)
+            if match:
+                file, line = source.origin(int(match.group(1)))
+                errors.append(CompileError(file, line, match.group(2).strip()))
+                break
+    return errors
+
+
+def uniform_values(model: Model, values: dict[str, Value]) -> dict[str, object]:
+    """Parameter values as the GL uniforms take them (enums become their index)."""
+    out: dict[str, object] = {}
+    for name, value in values.items():
+        param = model.params[name]
+        if param.kind == "enum":
+            continue  # compiled in as a constant
+        if param.kind == "bool":
+            out[name] = bool(value)
+        elif param.kind == "color":
+            out[name] = tuple(float(c) for c in value)
+        else:
+            out[name] = float(value)
+    return out

@@ -1,0 +1,27 @@
+// @model ggx
+// @title GGX / Trowbridge-Reitz microfacet model with height-correlated Smith shadowing
+// @formula f_r = kd / pi + ks * F D G2 / (4 (N.L)(N.V))
+// @formula D = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2);  G2 = 1 / (1 + Lambda(L) + Lambda(V))
+// @formula Lambda = (-1 + sqrt(1 + alpha^2 tan^2(theta))) / 2;  F = f0 + (1 - f0)(1 - V.H)^5
+// @source B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007;
+// @source E. Heitz, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 2014.
+// @include terms/distributions.glsl
+// @include terms/geometry.glsl
+// @include terms/fresnel.glsl
+// @param kd color 0.1 0.1 0.1 | diffuse albedo
+// @param ks color 1 1 1 | specular weight
+// @param alpha float 0.01 1 0.25 log | roughness (GGX width, alpha = slope scale)
+// @param f0 color 0.04 0.04 0.04 | Fresnel reflectance at normal incidence
+
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    float NoL = dot(N, L);
+    float NoV = dot(N, V);
+    if (NoL <= 0.0 || NoV <= 0.0) return vec3(0.0);
+    vec3 H = normalize(L + V);
+    float NoH = dot(N, H);
+    float VoH = dot(V, H);
+    float D = D_ggx(NoH, alpha);
+    float G2 = G2_smith_ggx(NoL, NoV, alpha);
+    vec3 F = F_schlick(f0, VoH);
+    return kd * INV_PI + ks * F * (D * G2 / (4.0 * NoL * NoV));
+}

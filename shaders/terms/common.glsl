@@ -1,0 +1,12 @@
+// Constants and small helpers shared by every model (always included first).
+const float PI = 3.14159265358979;
+const float INV_PI = 0.318309886183791;
+const float EPS = 1e-7;
+
+float sqr(float x) { return x * x; }
+
+// tan^2 of the angle whose cosine is c (c in (0, 1]).
+float tan2_from_cos(float c) {
+    float c2 = max(c * c, EPS);
+    return max(1.0 - c2, 0.0) / c2;
+}

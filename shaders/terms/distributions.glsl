@@ -1,0 +1,47 @@
+// Microfacet distributions D(alpha), alpha = angle between N and H, NoH = cos(alpha).
+// All three are normalised like the Cook-Torrance Beckmann form of the lecture:
+// the integral of D(alpha) cos(alpha) over the hemisphere of H is pi/4, so switching
+// the distribution changes the shape of the highlight but not the light it reflects.
+
+// Beckmann (1963) in the form used by Cook & Torrance (1982), m = RMS microfacet slope.
+float D_beckmann(float NoH, float m) {
+    float c2 = max(NoH * NoH, EPS);
+    float m2 = m * m;
+    return exp(-tan2_from_cos(NoH) / m2) / (4.0 * m2 * c2 * c2);
+}
+
+// Blinn (1977): cos^e(alpha) with e chosen so that D(beta) = D(0) / 2.
+// Normalised: (e + 2) / 8 * cos^e(alpha), since the integral of cos^(e+1) over the
+// hemisphere is 2 pi / (e + 2).
+float D_blinn(float NoH, float beta) {
+    float e = log(2.0) / -log(cos(beta));
+    return (e + 2.0) / 8.0 * pow(max(NoH, 0.0), e);
+}
+
+// Gaussian (Blinn 1977, Torrance-Sparrow): exp(-(c alpha)^2) with c = sqrt(ln 2) / beta,
+// so that D(beta) = D(0) / 2. (The lecture slide writes c = sqrt(2) / beta, which puts the
+// half-angle elsewhere; we keep the defining property D(beta) = 1/2.) There is no closed
+// form for its hemisphere integral, so the normaliser is a 32-step midpoint rule.
+float D_gaussian_shape(float alpha, float beta) {
+    return exp(-log(2.0) * sqr(alpha / beta));
+}
+
+float D_gaussian(float NoH, float beta) {
+    const int STEPS = 32;
+    float h = 0.5 * PI / float(STEPS);
+    float integral = 0.0;  // 2 pi * int_0^{pi/2} shape(a) cos(a) sin(a) da
+    for (int i = 0; i < STEPS; ++i) {
+        float a = (float(i) + 0.5) * h;
+        integral += D_gaussian_shape(a, beta) * cos(a) * sin(a);
+    }
+    integral *= 2.0 * PI * h;
+    float alpha = acos(clamp(NoH, -1.0, 1.0));
+    return 0.25 * PI * D_gaussian_shape(alpha, beta) / integral;
+}
+
+// Trowbridge-Reitz / GGX (Walter et al. 2007), alpha = roughness; integrates to 1.
+float D_ggx(float NoH, float alpha) {
+    float a2 = alpha * alpha;
+    float d = NoH * NoH * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
