@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import csv
 import importlib
-import importlib.util
 import sys
 from pathlib import Path
 
@@ -18,6 +17,12 @@ VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
 
 class UsageError(Exception):
     """Bad input from the user: printed as one line, exit status 2."""
+
+
+def feature_present(module_name: str) -> bool:
+    """Whether a feature package's CLI module is part of this checkout."""
+    relative = Path(*module_name.split(".")[1:]).with_suffix(".py")
+    return (Path(__file__).parent / relative).is_file()
 
 
 def parse_pair(text: str, what: str) -> tuple[float, float]:
@@ -233,7 +238,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_bench)
 
     for module_name in FEATURE_CLIS:
-        if importlib.util.find_spec(module_name) is not None:
+        if feature_present(module_name):
             importlib.import_module(module_name).register(sub)
     return parser
 
@@ -244,7 +249,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
-        if importlib.util.find_spec("lab.app.cli") is not None:
+        if feature_present("lab.app.cli"):
             args = parser.parse_args(["app", *(argv or [])])
         else:
             args = parser.parse_args(["gallery"])

@@ -21,6 +21,9 @@ VERSION_LINES = {
     "300es": ["#version 300 es", "precision highp float;", "precision highp int;"],
 }
 
+# View constants used when the caller gives no preamble (e.g. one light for the sphere).
+DEFAULT_PREAMBLE = {"sphere": "const int LIGHT_COUNT = 1;"}
+
 # A vertex shader shared by every view: one triangle that covers the viewport.
 VERTEX_SHADER = """
 void main() {
@@ -118,12 +121,15 @@ def uniform_declarations(model: Model, enums: dict[str, str] | None = None) -> l
     return lines
 
 
-def _add_include(source: Source, relative: str, seen: set[str], model: Model, line: int) -> None:
+def _add_include(source: Source, relative: str, seen: set[str], model: Model) -> None:
     path = (SHADER_DIR / relative).resolve()
     if relative in seen:
         return
     if not path.is_file() or SHADER_DIR.resolve() not in path.parents:
-        raise ModelError(f"@include {relative}: no such file under shaders/", label_of(model.path), line)
+        line = next((n for n, text in enumerate(model.code.splitlines(), 1)
+                     if "@include" in text and relative in text), None)
+        raise ModelError(f"@include {relative}: no such file under shaders/ "
+                         "(see shaders/terms for the shared terms)", label_of(model.path), line)
     seen.add(relative)
     source.add(path.read_text(encoding="utf-8"), label_of(path))
 
@@ -146,14 +152,14 @@ def assemble_fragment(
     check_portable(model.code, model_label)
     source = Source()
     source.add("\n".join(VERSION_LINES[target]), "<version>")
+    preamble = preamble or DEFAULT_PREAMBLE.get(view, "")
     if preamble:
         source.add(preamble, "<preamble>")
     seen: set[str] = set()
-    _add_include(source, "terms/common.glsl", seen, model, 1)
+    _add_include(source, "terms/common.glsl", seen, model)
     source.add("\n".join(uniform_declarations(model, enums)), f"{model_label} (parameters)")
-    header_lines = {inc: i for i, inc in enumerate(model.includes, start=1)}
     for include in model.includes:
-        _add_include(source, include, seen, model, header_lines[include])
+        _add_include(source, include, seen, model)
     source.add(model.code, model_label)
     source.add(f"const bool IS_DELTA = {'true' if model.delta else 'false'};", "<host>")
     if not model.delta:

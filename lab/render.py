@@ -107,7 +107,11 @@ class Renderer:
         resolved = model.resolve(values)
         enums = {k: v for k, v in resolved.items() if model.params[k].kind == "enum"}
         program = self.program(model, view, enums, preamble)
-        for name, value in {**glsl.uniform_values(model, resolved), **uniforms}.items():
+        # A model that carries data (lab.measured's table) binds its textures here.
+        bind = getattr(model, "bind", None)
+        data_uniforms = bind(self.ctx) if bind is not None else {}
+        uniforms = {**glsl.uniform_values(model, resolved), **data_uniforms, **uniforms}
+        for name, value in uniforms.items():
             if name in program:  # the driver drops uniforms the code never reads
                 uniform = program[name]
                 if isinstance(value, list):  # arrays may be trimmed to what the code reads
@@ -238,12 +242,14 @@ class Renderer:
         self, model: Model | str, values, thetas_deg, phi_i: float = 0.0,
         samples: int = 256, wedges: int = 64, only_delta: bool = False,
     ) -> np.ndarray:
-        """Directional albedo (n, 3) at evenly spaced theta_i (degrees)."""
+        """Directional albedo (n, 3) at theta_i (degrees), one pass when evenly spaced."""
         model = as_model(model)
         thetas = np.asarray(thetas_deg, dtype=np.float64).ravel()
         step = float(thetas[1] - thetas[0]) if len(thetas) > 1 else 0.0
         if len(thetas) > 2 and not np.allclose(np.diff(thetas), step):
-            raise ValueError("albedo needs evenly spaced theta_i values")
+            return np.concatenate([
+                self.albedo(model, values, [t], phi_i, samples, wedges, only_delta) for t in thetas
+            ])
         uniforms = {
             "u_theta0": math.radians(thetas[0]),
             "u_theta_step": math.radians(step),

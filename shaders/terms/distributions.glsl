@@ -20,22 +20,25 @@ float D_blinn(float NoH, float beta) {
 
 // Gaussian (Blinn 1977, Torrance-Sparrow): exp(-(c alpha)^2) with c = sqrt(ln 2) / beta,
 // so that D(beta) = D(0) / 2. (The lecture slide writes c = sqrt(2) / beta, which puts the
-// half-angle elsewhere; we keep the defining property D(beta) = 1/2.) There is no closed
-// form for its hemisphere integral, so the normaliser is a 32-step midpoint rule.
+// half-angle elsewhere; we keep the defining property D(beta) = 1/2.) Its hemisphere
+// integral has no closed form, so the normaliser is Simpson's rule over [0, 6 beta], beyond
+// which the shape is below 1e-10.
 float D_gaussian_shape(float alpha, float beta) {
     return exp(-log(2.0) * sqr(alpha / beta));
 }
 
 float D_gaussian(float NoH, float beta) {
-    const int STEPS = 32;
-    float h = 0.5 * PI / float(STEPS);
-    float integral = 0.0;  // 2 pi * int_0^{pi/2} shape(a) cos(a) sin(a) da
-    for (int i = 0; i < STEPS; ++i) {
-        float a = (float(i) + 0.5) * h;
-        integral += D_gaussian_shape(a, beta) * cos(a) * sin(a);
+    const int STEPS = 48;  // even, for Simpson's rule
+    float top = min(0.5 * PI, 6.0 * beta);
+    float h = top / float(STEPS);
+    float integral = 0.0;  // int_0^top shape(a) cos(a) sin(a) da
+    for (int i = 0; i <= STEPS; ++i) {
+        float a = float(i) * h;
+        float weight = (i == 0 || i == STEPS) ? 1.0 : ((i - (i / 2) * 2) == 1 ? 4.0 : 2.0);
+        integral += weight * D_gaussian_shape(a, beta) * cos(a) * sin(a);
     }
-    integral *= 2.0 * PI * h;
-    float alpha = acos(clamp(NoH, -1.0, 1.0));
+    integral *= 2.0 * PI * h / 3.0;
+    float alpha = angle_from_cos(NoH);
     return 0.25 * PI * D_gaussian_shape(alpha, beta) / integral;
 }
 

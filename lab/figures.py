@@ -1,0 +1,76 @@
+"""The lecture's figures and the model gallery, rendered from the real shaders."""
+
+from __future__ import annotations
+
+import html
+from pathlib import Path
+
+from lab import plots
+from lab.models import load_model, model_names
+from lab.render import Renderer
+
+
+def _sphere(renderer: Renderer, out: Path, model: str, values: dict, light=(45.0, 0.0),
+            exposure: float = 0.0) -> Path:
+    plots.save_image(renderer.sphere(model, values, light, size=384), out, exposure)
+    return out
+
+
+def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> list[Path]:
+    """Render the lecture's figures into `outdir`; returns the PNG paths."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    renderer = renderer or Renderer()
+    paths = []
+    # Phong exponent: the highlight shrinks as ke grows (lecture: k = 4, 50, 120).
+    for ke in (4, 50, 120):
+        paths.append(_sphere(renderer, outdir / f"phong_ke_{ke}.png", "phong",
+                             {"kd": (0.25, 0.05, 0.05), "ks": (0.6,) * 3, "ke": float(ke)}))
+    # Beckmann roughness: m = 0.2 (shiny) and 0.6 (rough).
+    for m in (0.2, 0.6):
+        paths.append(_sphere(renderer, outdir / f"beckmann_m_{m}.png", "cook_torrance",
+                             {"kd": (0.05, 0.1, 0.3), "m": m, "f0": (0.9,) * 3}))
+    # Off-specular peak: at grazing incidence Cook-Torrance peaks beyond the mirror angle.
+    fig, ax = plots._figure(polar=True)
+    theta_i = 75.0
+    for name, values, color in (
+        ("phong", {"kd": (0.0,) * 3, "ks": (0.2,) * 3, "ke": 20.0}, "tab:blue"),
+        ("cook_torrance", {"kd": (0.0,) * 3, "m": 0.35, "f0": (0.04,) * 3}, "tab:red"),
+    ):
+        lobe = renderer.polar(name, values, theta_i, cos_weighted=True)
+        plots.polar_axes(ax, lobe, name, color, normalize=True)
+    plots.style_polar(ax, theta_i, "f_r cos θo (each scaled to its peak)")
+    path = outdir / "off_specular_peak.png"
+    fig.tight_layout()
+    fig.savefig(path)
+    paths.append(path)
+    # Sun and moon: lit from the eye, Lambert darkens to the rim, Lommel-Seeliger stays flat.
+    # The moon is exposed 3 stops up so both discs have the same brightness at the centre.
+    for name, exposure in (("lambert", 0.0), ("lommel_seeliger", 3.0)):
+        paths.append(_sphere(renderer, outdir / f"full_{name}.png", name, {}, (0.0, 0.0), exposure))
+    return paths
+
+
+def gallery(outdir: str | Path, renderer: Renderer | None = None) -> Path:
+    """Every model as a lit sphere and a polar lobe, plus an index.html; returns the index."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    renderer = renderer or Renderer()
+    rows = []
+    for name in model_names():
+        model = load_model(name)
+        _sphere(renderer, outdir / f"{name}_sphere.png", name, {}, light=(30.0, 0.0))
+        plots.save_view(renderer, "polar", model, {}, 30.0, 0.0, outdir / f"{name}_polar.png")
+        rows.append(
+            f"<tr><td><b>{html.escape(name)}</b><br>{html.escape(model.title)}</td>"
+            f"<td><img src='{name}_sphere.png' width=256></td>"
+            f"<td><img src='{name}_polar.png' width=340></td></tr>"
+        )
+    index = outdir / "index.html"
+    index.write_text(
+        "<!doctype html><meta charset=utf-8><title>brdf-lab gallery</title>"
+        "<body style='background:#222;color:#eee;font-family:sans-serif'>"
+        "<h1>brdf-lab: every model, light at θi = 30°</h1><table>" + "".join(rows) + "</table>",
+        encoding="utf-8",
+    )
+    return index

@@ -1,0 +1,262 @@
+"""Exercises: their `exercise.toml`, the student's file, and how it becomes a model.
+
+Everything here runs without OpenGL, so the supervising process can read exercises,
+check a submission file and name the checks before any child process renders.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lab.glsl import check_portable, label_of
+from lab.models import Model, ModelError, load_model, parse_model
+from lab.render import Light
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+MAX_BYTES = 256 * 1024
+CHECK_KINDS = ("probe", "sphere", "polar")
+
+
+class ExerciseError(ValueError):
+    """A broken exercise folder (instructor side): a usage error."""
+
+
+class SubmissionError(ValueError):
+    """A submission that cannot be graded at all; the message is for the student."""
+
+
+@dataclass
+class Check:
+    """One graded check of an exercise, as `exercise.toml` declares it."""
+
+    name: str
+    kind: str  # probe | sphere | polar
+    points: float
+    params: dict = field(default_factory=dict)
+    view: str = "sphere"
+    lights: list[Light] = field(default_factory=list)
+    ambient: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    size: int = 128
+    theta_i: float = 45.0
+    phi_i: float = 0.0
+    pairs: int = 256
+    seed: int = 1
+    rtol: float = 2e-3
+    atol: float = 1e-4
+    threshold: float = 5.0  # per channel, in 1/255 after tone mapping
+    max_fraction: float = 0.001
+
+
+@dataclass
+class Exercise:
+    """An exercise folder: handout, student file, checks and committed references."""
+
+    folder: Path
+    title: str
+    student_file: str
+    checks: list[Check]
+    functions: list[str]
+    wrapper: str | None = None  # library model that calls the student's term functions
+    replaces: str | None = None  # the library term file the student's file stands in for
+
+    @property
+    def name(self) -> str:
+        return self.folder.name
+
+    @property
+    def stub(self) -> Path:
+        return self.folder / self.student_file
+
+    @property
+    def references(self) -> Path:
+        return self.folder / "references"
+
+    @property
+    def solution(self) -> Path:
+        """The solved file: solutions/ mirrors exercises/ path for path."""
+        return self.folder.parent.parent / "solutions" / self.folder.name / self.student_file
+
+    @property
+    def max_points(self) -> float:
+        return sum(c.points for c in self.checks)
+
+
+def _lights(raw, where: str) -> list[Light]:
+    lights = []
+    for item in raw:
+        if not isinstance(item, list) or len(item) not in (2, 3):
+            raise ExerciseError(f"{where}: each light is [theta, phi] or [theta, phi, [r, g, b]]")
+        rgb = tuple(float(c) for c in item[2]) if len(item) == 3 else (1.0, 1.0, 1.0)
+        lights.append(Light(float(item[0]), float(item[1]), rgb))
+    return lights
+
+
+def load_exercise(folder: str | Path) -> Exercise:
+    """Read `folder/exercise.toml`; raises ExerciseError with the file and what is wrong."""
+    folder = Path(folder)
+    spec_path = folder / "exercise.toml"
+    if not spec_path.is_file():
+        raise ExerciseError(f"{folder}: not an exercise folder (no exercise.toml in it)")
+    try:
+        spec = tomllib.loads(spec_path.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+        raise ExerciseError(f"{spec_path}: {err}") from None
+    try:
+        defaults = spec.get("defaults", {})
+        checks = []
+        for raw in spec["checks"]:
+            merged = {**defaults, **raw}
+            kind = merged.pop("kind")
+            if kind not in CHECK_KINDS:
+                raise ExerciseError(f"{spec_path}: check kind {kind!r} is not one of {CHECK_KINDS}")
+            lights = _lights(merged.pop("lights", [[45.0, 0.0]]), str(spec_path))
+            ambient = tuple(float(c) for c in merged.pop("ambient", (0.0, 0.0, 0.0)))
+            params = {k: tuple(v) if isinstance(v, list) else v
+                      for k, v in merged.pop("params", {}).items()}
+            checks.append(Check(kind=kind, lights=lights, ambient=ambient, params=params, **merged))
+        exercise = Exercise(
+            folder=folder,
+            title=spec["title"],
+            student_file=spec["student_file"],
+            checks=checks,
+            functions=list(spec.get("functions", [])),
+            wrapper=spec.get("wrapper"),
+            replaces=spec.get("replaces"),
+        )
+    except (KeyError, TypeError) as err:
+        raise ExerciseError(f"{spec_path}: missing or malformed entry {err}") from None
+    names = [c.name for c in exercise.checks]
+    if len(set(names)) != len(names):
+        raise ExerciseError(f"{spec_path}: two checks share a name")
+    return exercise
+
+
+def find_exercises(root: str | Path) -> list[Exercise]:
+    """One exercise folder, or every exercise folder directly inside `root`."""
+    root = Path(root)
+    if (root / "exercise.toml").is_file():
+        return [load_exercise(root)]
+    found = [load_exercise(p.parent) for p in sorted(root.glob("*/exercise.toml"))]
+    if not found:
+        raise ExerciseError(f"{root}: no exercise.toml in it or in its sub-folders")
+    return found
+
+
+# -- the student's file --------------------------------------------------------------------
+def read_submission(path: Path) -> str:
+    """The submission's text, or SubmissionError saying what is wrong with the file."""
+    if path.is_symlink():
+        raise SubmissionError(f"{path}: is a symbolic link; submit the file itself")
+    if not path.exists():
+        raise SubmissionError(f"{path}: file not found; submit it under this name")
+    if not path.is_file():
+        raise SubmissionError(f"{path}: is not a regular file")
+    size = path.stat().st_size
+    if size > MAX_BYTES:
+        raise SubmissionError(
+            f"{path}: the file has {size // 1024} KB, over the limit of {MAX_BYTES // 1024} KB"
+        )
+    raw = path.read_bytes()
+    try:
+        code = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = raw[: err.start].count(b"\n") + 1
+        raise SubmissionError(
+            f"{path}:{line}: the file is not UTF-8 text (byte 0x{raw[err.start]:02x}); "
+            "save it as UTF-8"
+        ) from None
+    if not code.strip():
+        raise SubmissionError(f"{path}: the file is empty; start from the stub in the exercise")
+    return code
+
+
+_COMMENTS = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
+_SIGNATURE = re.compile(r"\b(\w+)\s+(\w+)\s*\(([^()]*)\)\s*\{")
+
+
+def _types(params: str) -> list[str]:
+    """Parameter types of a GLSL parameter list ('in vec3 L, float x' -> [vec3, float])."""
+    types = []
+    for part in params.split(","):
+        words = [w for w in part.split() if w not in ("in", "const", "highp", "mediump", "lowp")]
+        if words and words != ["void"]:
+            types.append(" ".join(words[:-1]) if len(words) > 1 else words[0])
+    return types
+
+
+def check_functions(code: str, required: list[str], label: str) -> None:
+    """Each required function is defined with the expected signature (no GL needed)."""
+    stripped = _COMMENTS.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), code)
+    defined: dict[str, tuple[str, list[str], int]] = {}
+    for match in _SIGNATURE.finditer(stripped):
+        ret, name, params = match.groups()
+        if ret in ("if", "for", "while", "return", "else"):
+            continue
+        line = stripped[: match.start()].count("\n") + 1
+        defined.setdefault(name, (ret, _types(params), line))
+    for signature in required:
+        want = _SIGNATURE.match(signature + " {")
+        ret, name, params = want.groups()
+        if name not in defined:
+            close = difflib.get_close_matches(name, list(defined), n=1, cutoff=0.6)
+            close += [n for n in defined if n.lower() == name.lower() and n not in close]
+            hint = f" (you defined {close[0]}: check the spelling)" if close else ""
+            raise SubmissionError(f"{label}: function {name} is missing{hint}; define {signature}")
+        got_ret, got_types, line = defined[name]
+        if got_ret != ret or got_types != _types(params):
+            got = f"{got_ret} {name}({', '.join(got_types)})"
+            raise SubmissionError(
+                f"{label}:{line}: {got} has the wrong signature; the grader calls {signature}"
+            )
+
+
+def build_model(exercise: Exercise, path: Path, code: str) -> Model:
+    """The submission as a model that every view can render.
+
+    A term exercise's file is put in front of its wrapper model from the library, whose
+    include of the term file it replaces is dropped.
+    """
+    label = label_of(path)
+    try:
+        check_portable(code, label)
+        check_functions(code, exercise.functions, label)
+        if exercise.wrapper:
+            wrapper = load_model(exercise.wrapper)
+            return Model(
+                name=wrapper.name,
+                path=path,
+                code=code.rstrip("\n") + "\n" + wrapper.code,
+                title=wrapper.title,
+                includes=[i for i in wrapper.includes if i != exercise.replaces],
+                params=wrapper.params,
+            )
+        model = parse_model(code, path)
+    except ModelError as err:
+        raise SubmissionError(str(err)) from None
+    stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
+    for name, param in stub.params.items():
+        mine = model.params.get(name)
+        if mine is None or mine.kind != param.kind or mine.choices != param.choices:
+            raise SubmissionError(
+                f"{label}: keep the header line '{param.header_line()}' from the stub "
+                "(the grader sets this parameter)"
+            )
+    return model
+
+
+def wrapper_origin(exercise: Exercise, code: str, file: str, line: int) -> tuple[str, int]:
+    """Map a compile error in the wrapper part of a term exercise back to the wrapper file."""
+    if not exercise.wrapper:
+        return file, line
+    student_lines = len(code.rstrip("\n").splitlines())
+    if line <= student_lines:
+        return file, line
+    return label_of(load_model(exercise.wrapper).path), line - student_lines

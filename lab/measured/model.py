@@ -1,0 +1,63 @@
+"""The `measured` model: a tabulated BRDF rendered in every view through a 3D texture.
+
+The GLSL lives in measured.glsl beside this file (a model file with the usual header).
+It is not in shaders/brdfs because it needs data: a MeasuredModel carries its table and
+binds it as a texture whenever the Renderer draws it (Renderer._run calls `bind`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import moderngl
+import numpy as np
+
+from lab.measured.merl import MerlTable, read_merl
+from lab.models import Model, load_model
+
+MODEL_FILE = Path(__file__).resolve().parent / "measured.glsl"
+# Texture unit of the table: above the units the views use for their own inputs (probe: 0, 1).
+TABLE_UNIT = 7
+
+
+@dataclass
+class MeasuredModel(Model):
+    """The measured model with its table; `bind(ctx)` uploads it (once) and binds it."""
+
+    table: MerlTable | None = None
+    _textures: dict = field(default_factory=dict, repr=False)
+
+    def texture(self, ctx: moderngl.Context) -> moderngl.Texture3D:
+        """The table as an RGB float texture (n_p, n_d, n_h) in `ctx`, made once per context."""
+        if self.table is None:
+            raise ValueError("the measured model has no table: use measured_model(table)")
+        texture = self._textures.get(id(ctx))
+        if texture is None:
+            n_h, n_d, n_p = self.table.dims
+            texels = np.ascontiguousarray(self.table.rgb, dtype=np.float32)  # (h, d, p, rgb)
+            texture = ctx.texture3d((n_p, n_d, n_h), 3, texels.tobytes(), dtype="f4")
+            # The shader fetches texels itself (texelFetch), so hardware filtering is unused;
+            # float textures need not be filterable (WebGL2).
+            texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+            self._textures[id(ctx)] = texture
+        return texture
+
+    def bind(self, ctx: moderngl.Context) -> dict[str, object]:
+        """Bind the table before a draw; returns the uniforms that point the shader at it."""
+        self.texture(ctx).use(TABLE_UNIT)
+        return {"u_measured": TABLE_UNIT}
+
+    def release(self) -> None:
+        for texture in self._textures.values():
+            texture.release()
+        self._textures.clear()
+
+
+def measured_model(table: MerlTable | str | Path) -> MeasuredModel:
+    """The `measured` model for a table (or the path of a .binary file)."""
+    if not isinstance(table, MerlTable):
+        table = read_merl(table)
+    base = load_model(MODEL_FILE)
+    fields = {name: getattr(base, name) for name in Model.__dataclass_fields__}
+    return MeasuredModel(**fields, table=table)

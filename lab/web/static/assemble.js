@@ -1,0 +1,168 @@
+// GLSL program assembly, mirroring lab/glsl.py: version lines, terms/common.glsl,
+// parameter uniforms (enums as constants), includes, the model, the host's IS_DELTA and
+// DELTA_REFLECTANCE stub, then the view template. Each line keeps the file and line it
+// came from, so compile errors name the model file and its own line numbers.
+
+import { ModelError, splitLines } from "./header.js";
+
+export const TARGETS = ["330", "300es"];
+export const VERSION_LINES = {
+  "330": ["#version 330 core"],
+  "300es": ["#version 300 es", "precision highp float;", "precision highp int;"],
+};
+
+// View constants used when the caller gives no preamble (e.g. one light for the sphere).
+export const DEFAULT_PREAMBLE = { sphere: "const int LIGHT_COUNT = 1;" };
+
+// The vertex shader shared by every view: one triangle that covers the viewport.
+export const VERTEX_SHADER = `
+void main() {
+    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+`;
+
+const FORBIDDEN_DIRECTIVE = /^\s*#\s*(version|extension|include)\b/;
+
+// Where drivers put the line number in an info log; the first group is the line.
+const LOG_LINE_PATTERNS = [
+  /^\s*(?:ERROR|WARNING):\s*\d+:(\d+):\s*(.*)$/, // ANGLE (Chromium), Apple, glslang
+  /^\s*\d+:(\d+)\(\d+\):\s*(.*)$/, // Mesa
+  /^\s*\d+\((\d+)\)\s*:\s*(.*)$/, // NVIDIA
+];
+
+/** An assembled shader: its lines and, for each line, the [file, line] it came from. */
+export class Source {
+  constructor() {
+    this.lines = [];
+    this.origins = [];
+  }
+
+  add(text, label, firstLine = 1) {
+    splitLines(text).forEach((line, offset) => {
+      this.lines.push(line);
+      this.origins.push([label, firstLine + offset]);
+    });
+  }
+
+  get text() {
+    return this.lines.join("\n") + "\n";
+  }
+
+  /** [file, line] of the assembled program's 1-based `line`. */
+  origin(line) {
+    if (line >= 1 && line <= this.origins.length) return this.origins[line - 1];
+    return ["<assembled>", line];
+  }
+}
+
+/** Reject directives that the host owns. */
+export function checkPortable(code, label) {
+  splitLines(code).forEach((line, index) => {
+    const match = FORBIDDEN_DIRECTIVE.exec(line);
+    if (match) {
+      throw new ModelError(
+        `remove the '#${match[1]}' line: the lab adds version lines itself and ` +
+          "shared terms are included with a '// @include' header line", label, index + 1);
+    }
+  });
+}
+
+/** Uniforms for the parameters; enums become constants (one program per choice). */
+export function uniformDeclarations(model, enums = {}) {
+  const lines = [];
+  for (const p of model.params) {
+    if (p.kind === "enum") {
+      p.choices.forEach((choice, index) => {
+        lines.push(`const int ${p.name.toUpperCase()}_${choice.toUpperCase()} = ${index};`);
+      });
+      const chosen = enums[p.name] ?? p.default;
+      lines.push(`const int ${p.name} = ${p.name.toUpperCase()}_${chosen.toUpperCase()};`);
+    } else {
+      const type = { float: "float", color: "vec3", bool: "bool" }[p.kind];
+      lines.push(`uniform ${type} ${p.name};`);
+    }
+  }
+  return lines;
+}
+
+/** "a/./b/../c" -> "a/c"; null when the path leaves shaders/. */
+function normalize(relative) {
+  const parts = [];
+  for (const part of relative.split("/")) {
+    if (part === "" || part === ".") continue;
+    if (part === "..") {
+      if (!parts.length) return null;
+      parts.pop();
+    } else parts.push(part);
+  }
+  return parts.join("/");
+}
+
+/** The first line that mentions the include (for messages about it), or null. */
+export function includeLine(model, relative) {
+  const lines = splitLines(model.code);
+  const index = lines.findIndex((text) => text.includes("@include") && text.includes(relative));
+  return index < 0 ? null : index + 1;
+}
+
+function addInclude(source, relative, seen, model, files) {
+  if (seen.has(relative)) return;
+  const key = normalize(relative);
+  if (key === null || !(key in files)) {
+    throw new ModelError(
+      `@include ${relative}: no such file under shaders/ (see shaders/terms for the shared terms)`,
+      model.path,
+      includeLine(model, relative));
+  }
+  seen.add(relative);
+  source.add(files[key], `shaders/${key}`);
+}
+
+/**
+ * The fragment shader for `model` in `view`. `files` maps paths under shaders/
+ * ("terms/common.glsl", "views/sphere.glsl", ...) to their text.
+ */
+export function assembleFragment(model, view, files, { target = "300es", preamble = "",
+  enums = {} } = {}) {
+  if (!TARGETS.includes(target)) throw new Error(`unknown GLSL target ${target}`);
+  checkPortable(model.code, model.path);
+  const source = new Source();
+  source.add(VERSION_LINES[target].join("\n"), "<version>");
+  preamble = preamble || DEFAULT_PREAMBLE[view] || "";
+  if (preamble) source.add(preamble, "<preamble>");
+  const seen = new Set();
+  addInclude(source, "terms/common.glsl", seen, model, files);
+  source.add(uniformDeclarations(model, enums).join("\n"), `${model.path} (parameters)`);
+  for (const include of model.includes) addInclude(source, include, seen, model, files);
+  source.add(model.code, model.path);
+  source.add(`const bool IS_DELTA = ${model.delta ? "true" : "false"};`, "<host>");
+  if (!model.delta) {
+    source.add(
+      "vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }", "<host>");
+  }
+  const viewKey = `views/${view}.glsl`;
+  if (!(viewKey in files)) throw new Error(`no view template shaders/${viewKey}`);
+  source.add(files[viewKey], `shaders/${viewKey}`);
+  return source;
+}
+
+export function vertexSource(target = "300es") {
+  return VERSION_LINES[target].join("\n") + "\n" + VERTEX_SHADER;
+}
+
+/** Driver info log -> [{file, line, message}] located in the original files. */
+export function translateLog(log, source) {
+  const errors = [];
+  for (const raw of splitLines(log)) {
+    for (const pattern of LOG_LINE_PATTERNS) {
+      const match = pattern.exec(raw);
+      if (match) {
+        const [file, line] = source.origin(Number(match[1]));
+        errors.push({ file, line, message: match[2].trim() });
+        break;
+      }
+    }
+  }
+  return errors;
+}

@@ -1,0 +1,210 @@
+// Model file headers, parsed by the rules of shaders/README.md.
+// This mirrors lab/models.py line for line (messages included); the fixture files in
+// tests/fixtures/headers/ are checked against both, so the two parsers cannot drift.
+
+export const PARAM_TYPES = ["float", "color", "bool", "enum"];
+const IDENTIFIER = /^[A-Za-z_][A-Za-z0-9_]*$/;
+// Python's float() syntax (digits may be grouped with single underscores).
+const DIGITS = "\\d(?:_?\\d)*";
+const PY_FLOAT = new RegExp(
+  `^[+-]?(?:(?:${DIGITS}(?:\\.(?:${DIGITS})?)?|\\.${DIGITS})(?:[eE][+-]?${DIGITS})?` +
+    "|inf|infinity|nan)$",
+  "i",
+);
+
+/** A problem in a model file, with where it happened (like lab.models.ModelError). */
+export class ModelError extends Error {
+  constructor(message, file = null, line = null) {
+    const where = file && line ? `${file}:${line}: ` : file ? `${file}: ` : "";
+    super(where + message);
+    this.name = "ModelError";
+    this.detail = message;
+    this.file = file;
+    this.line = line;
+  }
+}
+
+/** Python's `format(x, "g")`: 6 significant digits, trailing zeros dropped. */
+export function formatG(x) {
+  if (Number.isNaN(x)) return "nan";
+  if (!Number.isFinite(x)) return x > 0 ? "inf" : "-inf";
+  if (x === 0) return Object.is(x, -0) ? "-0" : "0";
+  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(6)))));
+  if (exponent < -4 || exponent >= 6) {
+    let [mantissa, exp] = x.toExponential(5).split("e");
+    if (mantissa.includes(".")) mantissa = mantissa.replace(/0+$/, "").replace(/\.$/, "");
+    const sign = exp[0] === "-" ? "-" : "+";
+    const digits = exp.replace(/^[+-]/, "").padStart(2, "0");
+    return `${mantissa}e${sign}${digits}`;
+  }
+  let text = x.toFixed(Math.max(0, 5 - exponent));
+  if (text.includes(".")) text = text.replace(/0+$/, "").replace(/\.$/, "");
+  return text;
+}
+
+/** Python's repr() of a string (quotes chosen the way Python chooses them). */
+export function pyRepr(text) {
+  const quote = text.includes("'") && !text.includes('"') ? '"' : "'";
+  let body = text.replace(/\\/g, "\\\\").replace(/\n/g, "\\n").replace(/\r/g, "\\r");
+  body = body.replace(/\t/g, "\\t");
+  if (quote === "'") body = body.replace(/'/g, "\\'");
+  return quote + body + quote;
+}
+
+/** Python's str.splitlines() (no trailing empty line). */
+export function splitLines(text) {
+  const lines = text.split(/\r\n|[\n\r\v\f\x1c-\x1e\x85\u2028\u2029]/);
+  if (lines.length && lines[lines.length - 1] === "") lines.pop();
+  return lines;
+}
+
+// Python's str.split() / str.strip() whitespace.
+const pySplit = (text) => text.split(/\s+/).filter((t) => t.length > 0);
+const pyStrip = (text) => text.replace(/^\s+|\s+$/g, "");
+
+function number(token, what, path, line) {
+  if (!PY_FLOAT.test(token)) {
+    throw new ModelError(`${what} must be a number, not ${pyRepr(token)}`, path, line);
+  }
+  const value = Number(token.replace(/_/g, "").replace(/^([+-]?)inf(inity)?$/i, "$1Infinity"));
+  if (!Number.isFinite(value)) {
+    throw new ModelError(`${what} must be finite, not ${pyRepr(token)}`, path, line);
+  }
+  return value;
+}
+
+function partition(text, separator) {
+  const at = text.indexOf(separator);
+  return at < 0 ? [text, ""] : [text.slice(0, at), text.slice(at + separator.length)];
+}
+
+/** One `@param` line (without the `// @param` prefix). */
+export function parseParam(text, path, line) {
+  let [spec, doc] = partition(text, "|");
+  const tokens = pySplit(spec);
+  const usage = "write '@param NAME TYPE ... | meaning' (see shaders/README.md)";
+  if (tokens.length < 2) throw new ModelError(`incomplete @param line: ${usage}`, path, line);
+  const [name, kind, ...args] = tokens;
+  if (!IDENTIFIER.test(name)) {
+    throw new ModelError(`parameter name ${pyRepr(name)} is not a GLSL identifier`, path, line);
+  }
+  if (!PARAM_TYPES.includes(kind)) {
+    throw new ModelError(
+      `unknown parameter type ${pyRepr(kind)}: use one of ${PARAM_TYPES.join(", ")}`, path, line);
+  }
+  doc = pyStrip(doc);
+  const base = { name, kind, doc, minimum: 0, maximum: 1, scale: "linear", choices: [], line };
+  if (kind === "float") {
+    if (args.length !== 3 && args.length !== 4) {
+      throw new ModelError(
+        `float parameter ${name}: write 'MIN MAX DEFAULT [linear|log]'`, path, line);
+    }
+    const [low, high, dflt] = args.slice(0, 3).map(
+      (a) => number(a, `${name} range/default`, path, line));
+    const scale = args.length === 4 ? args[3] : "linear";
+    if (scale !== "linear" && scale !== "log") {
+      throw new ModelError(
+        `${name}: slider scale must be linear or log, not ${pyRepr(scale)}`, path, line);
+    }
+    if (!(low < high)) {
+      throw new ModelError(
+        `${name}: MIN (${formatG(low)}) must be below MAX (${formatG(high)})`, path, line);
+    }
+    if (!(low <= dflt && dflt <= high)) {
+      throw new ModelError(
+        `${name}: default ${formatG(dflt)} is outside [${formatG(low)}, ${formatG(high)}]`,
+        path, line);
+    }
+    if (scale === "log" && low <= 0) {
+      throw new ModelError(`${name}: a log slider needs MIN > 0`, path, line);
+    }
+    return { ...base, default: dflt, minimum: low, maximum: high, scale };
+  }
+  if (kind === "color") {
+    if (args.length !== 3) {
+      throw new ModelError(`color parameter ${name}: write 'R G B' (each 0..1)`, path, line);
+    }
+    const rgb = args.map((a) => number(a, `${name} channel`, path, line));
+    if (rgb.some((c) => !(c >= 0 && c <= 1))) {
+      throw new ModelError(`color parameter ${name}: channels must be in 0..1`, path, line);
+    }
+    return { ...base, default: rgb };
+  }
+  if (kind === "bool") {
+    if (args.length !== 1 || (args[0] !== "0" && args[0] !== "1")) {
+      throw new ModelError(`bool parameter ${name}: write 0 or 1 as the default`, path, line);
+    }
+    return { ...base, default: args[0] === "1" };
+  }
+  if (!args.length) {
+    throw new ModelError(
+      `enum parameter ${name}: list its choices (the first is the default)`, path, line);
+  }
+  for (const choice of args) {
+    if (!IDENTIFIER.test(choice)) {
+      throw new ModelError(
+        `enum choice ${pyRepr(choice)} of ${name} is not an identifier`, path, line);
+    }
+  }
+  if (new Set(args).size !== args.length) {
+    throw new ModelError(`enum parameter ${name} lists a choice twice`, path, line);
+  }
+  return { ...base, default: args[0], choices: args };
+}
+
+/**
+ * Parse a model file's header. `path` is the label used in messages (for library files
+ * "shaders/brdfs/NAME.glsl"); `expectedName` is given for library files, whose @model
+ * must match the file name. Returns a plain object shaped like lab.models.Model.
+ */
+export function parseModel(code, path, expectedName = null) {
+  const stem = path.split("/").pop().replace(/\.[^.]*$/, "");
+  const model = {
+    name: expectedName || stem, path, code, title: "", formula: [], source: [],
+    includes: [], params: [], delta: false,
+  };
+  let named = false;
+  const lines = splitLines(code);
+  for (let index = 0; index < lines.length; index++) {
+    const number = index + 1;
+    const stripped = pyStrip(lines[index]);
+    if (!stripped) continue;
+    if (!stripped.startsWith("//")) break; // the header ends at the first line of code
+    const body = pyStrip(stripped.slice(2));
+    if (!body.startsWith("@")) continue;
+    let [keyword, rest] = partition(body.slice(1), " ");
+    rest = pyStrip(rest);
+    if (keyword === "model") {
+      if (!IDENTIFIER.test(rest)) {
+        throw new ModelError(`@model name ${pyRepr(rest)} is not an identifier`, path, number);
+      }
+      model.name = rest;
+      named = true;
+    } else if (keyword === "title") model.title = rest;
+    else if (keyword === "formula") model.formula.push(rest);
+    else if (keyword === "source") model.source.push(rest);
+    else if (keyword === "include") model.includes.push(rest);
+    else if (keyword === "delta") model.delta = true;
+    else if (keyword === "param") {
+      const param = parseParam(rest, path, number);
+      if (model.params.some((p) => p.name === param.name)) {
+        throw new ModelError(`parameter ${param.name} is declared twice`, path, number);
+      }
+      model.params.push(param);
+    } else {
+      throw new ModelError(
+        `unknown header keyword @${keyword}: use @model, @title, @formula, @source, ` +
+          "@include, @delta or @param", path, number);
+    }
+  }
+  if (named && expectedName && model.name !== expectedName) {
+    throw new ModelError(
+      `@model ${model.name} does not match the file name ${path.split("/").pop()}`, path, 1);
+  }
+  return model;
+}
+
+/** Parameter defaults as a {name: value} object. */
+export function defaults(model) {
+  return Object.fromEntries(model.params.map((p) => [p.name, structuredClone(p.default)]));
+}
