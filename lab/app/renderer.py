@@ -1,0 +1,126 @@
+"""The app's renderer: the core Renderer plus .brdf files and the procedural object view."""
+
+from __future__ import annotations
+
+import re
+
+import moderngl
+import numpy as np
+
+from lab import glsl
+from lab.brdf_explorer import ExplorerModel, assemble, glsl_version
+from lab.models import Model
+from lab.render import MAX_LIGHTS, Light, Renderer, direction
+
+UNIFORM_LINE = re.compile(r"^uniform (float|vec3) ([A-Za-z_]\w*);$")
+SHAPES = ("torus", "sphere", "rounded box", "bumpy sphere")
+MODES = ("geometry only", "single BRDF", "diffuse texture only", "textures drive the BRDF")
+
+
+def spatially_varying(source: glsl.Source, model: Model) -> None:
+    """Turn float/colour parameter uniforms into per-pixel globals and add `sv_assign`.
+
+    The procedural maps of the object view then drive the model's own parameters: the
+    albedo map scales the first colour, the variation map moves every log-scaled float
+    toward the far end of its range (rougher or smoother, whichever is farther).
+    """
+    for index, (label, _) in enumerate(source.origins):
+        if label.endswith("(parameters)"):
+            match = UNIFORM_LINE.match(source.lines[index])
+            if match:
+                kind, name = match.groups()
+                source.lines[index] = f"uniform {kind} {name}_base; {kind} {name};"
+    body = []
+    first_color = True
+    for p in model.params.values():
+        if p.kind == "color":
+            scale = " * albedo" if first_color else ""
+            first_color = False
+            body.append(f"    {p.name} = {p.name}_base{scale};")
+        elif p.kind == "float" and p.scale == "log":
+            limits = f"{p.minimum:.9g}, {p.maximum:.9g}"
+            body.append(f"    {p.name} = sv_vary({p.name}_base, {limits}, vary);")
+        elif p.kind == "float":
+            body.append(f"    {p.name} = {p.name}_base;")
+    source.add(
+        "float sv_vary(float base, float lo, float hi, float t) {\n"
+        "    float a = log(base);\n"
+        "    float far_end = (a - log(lo) > log(hi) - a) ? log(lo) : log(hi);\n"
+        "    return exp(mix(a, far_end, 0.75 * t));\n"
+        "}\n"
+        "void sv_assign(float vary, vec3 albedo) {\n" + "\n".join(body) + "\n}",
+        "<host: spatially varying parameters>",
+    )
+
+
+class AppRenderer(Renderer):
+    """Compiles .brdf models with the context's highest GLSL version; adds `object`."""
+
+    def program(self, model: Model, view: str, enums: dict | None = None, preamble: str = ""):
+        explorer = isinstance(model, ExplorerModel)
+        if not explorer and view != "object":
+            return super().program(model, view, enums, preamble)
+        enums = enums or {}
+        version = glsl_version(self.ctx)
+        key = (str(model.path), model.code, view, tuple(sorted(enums.items())), preamble, explorer)
+        program = self._programs.get(key)
+        if program is None:
+            if explorer:
+                source = assemble(model, view, version, preamble, enums)
+                vertex = f"#version {version} core\n" + glsl.VERTEX_SHADER
+            else:
+                source = glsl.assemble_fragment(model, view, preamble=preamble, enums=enums)
+                vertex = glsl.vertex_source()
+            if view == "object":
+                spatially_varying(source, model)
+            try:
+                program = self.ctx.program(vertex_shader=vertex, fragment_shader=source.text)
+            except moderngl.Error as err:
+                log = str(err)
+                raise glsl.ShaderCompileError(glsl.translate_log(log, source), log) from None
+            self._programs[key] = program
+            self._vaos[id(program)] = self.ctx.vertex_array(program, [])
+        return program
+
+    def forget(self, model: Model) -> None:
+        """Release the programs compiled for an older version of a model file."""
+        for key in [k for k in self._programs if k[0] == str(model.path) and k[1] != model.code]:
+            program = self._programs.pop(key)
+            self._vaos.pop(id(program)).release()
+            program.release()
+
+    def object(
+        self,
+        model: Model,
+        values,
+        lights: list[Light],
+        ambient=(0.0, 0.0, 0.0),
+        shape: int = 0,
+        mode: int = 1,
+        yaw: float = 0.5,
+        pitch: float = 0.5,
+        size: int = 384,
+    ) -> np.ndarray:
+        """The procedural object lit by `lights` (camera space), (size, size, 4) float32."""
+        resolved = model.resolve(values)
+        lights = lights[:MAX_LIGHTS] or [Light(45.0, 0.0)]
+        pad = MAX_LIGHTS - len(lights)
+        uniforms = {
+            f"{name}_base": value
+            for name, value in glsl.uniform_values(model, resolved).items()
+            if model.params[name].kind in ("float", "color")
+        }
+        uniforms.update({
+            "u_resolution": (float(size), float(size)),
+            "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
+            + [(0.0, 0.0, 1.0)] * pad,
+            "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
+            "u_ambient": tuple(ambient),
+            "u_shape": int(shape),
+            "u_mode": int(mode),
+            "u_yaw": float(yaw),
+            "u_pitch": float(pitch),
+        })
+        preamble = f"const int LIGHT_COUNT = {len(lights)};"
+        fbo = self._run(model, "object", resolved, (size, size), uniforms, preamble)
+        return self._read(fbo)[::-1].copy()
