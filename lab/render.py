@@ -166,37 +166,40 @@ class Renderer:
             return None
         return self._read(fbo)[::-1].copy()
 
-    def probe(self, model: Model | str, values, L: np.ndarray, V: np.ndarray) -> np.ndarray:
-        """f_r (n, 3) for direction pairs L, V (n, 3) in the local frame N = z."""
+    def _probe(self, model: Model | str, values, view: str, inputs: list[np.ndarray]) -> np.ndarray:
+        """Run a probe view over n texels; `inputs` are (n, k<=4) arrays, one texture each."""
         model = as_model(model)
-        L = np.asarray(L, dtype=np.float32).reshape(-1, 3)
-        V = np.asarray(V, dtype=np.float32).reshape(-1, 3)
-        n = len(L)
+        n = len(inputs[0])
         if n == 0:
             return np.zeros((0, 3), np.float32)
         width = min(n, 1024)
         height = math.ceil(n / width)
-        textures = []
-        for unit, dirs in enumerate((L, V)):
+        textures, uniforms = [], {}
+        for unit, data in enumerate(inputs):
             padded = np.zeros((width * height, 4), np.float32)
-            padded[:n, :3] = dirs
-            texture = self.ctx.texture((width, height), 4, padded.tobytes(), dtype="f4")
+            padded[:n, : data.shape[1]] = data
+            texture = self.ctx.texture((width, height), 4, padded, dtype="f4")
             texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
             texture.use(unit)
             textures.append(texture)
+        uniforms = {"u_L": 0, "u_V": 1} if view == "probe" else {"u_angles": 0}
         try:
-            fbo = self._run(model, "probe", values, (width, height), {"u_L": 0, "u_V": 1})
+            fbo = self._run(model, view, values, (width, height), uniforms)
             return self._read(fbo).reshape(-1, 4)[:n, :3].copy()
         finally:
             for texture in textures:
                 texture.release()
 
+    def probe(self, model: Model | str, values, L: np.ndarray, V: np.ndarray) -> np.ndarray:
+        """f_r (n, 3) for direction pairs L, V (n, 3) in the local frame N = z."""
+        L = np.asarray(L, dtype=np.float32).reshape(-1, 3)
+        V = np.asarray(V, dtype=np.float32).reshape(-1, 3)
+        return self._probe(model, values, "probe", [L, V])
+
     def eval_angles(self, model: Model | str, values, angles_deg: np.ndarray) -> np.ndarray:
-        """f_r for rows (theta_i, phi_i, theta_o, phi_o) in degrees."""
-        angles = np.asarray(angles_deg, dtype=np.float64).reshape(-1, 4)
-        return self.probe(
-            model, values, direction(angles[:, 0], angles[:, 1]), direction(angles[:, 2], angles[:, 3])
-        )
+        """f_r for rows (theta_i, phi_i, theta_o, phi_o) in degrees (directions made on the GPU)."""
+        radians = np.radians(np.asarray(angles_deg, dtype=np.float64).reshape(-1, 4))
+        return self._probe(model, values, "probe_angles", [radians.astype(np.float32)])
 
     def polar(
         self, model: Model | str, values, theta_i: float, phi_i: float = 0.0, cos_weighted=False

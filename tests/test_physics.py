@@ -40,11 +40,16 @@ def random_values(model, rng, limits: dict | None = None) -> dict:
 
 
 def random_pairs(rng, n: int, max_theta: float = 85.0) -> np.ndarray:
-    """(n, 4) angles in degrees, uniform in solid angle up to max_theta."""
+    """(n, 4) angles in degrees, uniform in solid angle up to max_theta.
+
+    The angles are exactly representable as float32 radians (what the GPU receives), so the
+    comparison measures the shader, not the rounding of its input.
+    """
     cos_max = np.cos(np.radians(max_theta))
     theta = np.degrees(np.arccos(rng.uniform(cos_max, 1.0, (n, 2))))
     phi = rng.uniform(0.0, 360.0, (n, 2))
-    return np.column_stack([theta[:, 0], phi[:, 0], theta[:, 1], phi[:, 1]])
+    angles = np.column_stack([theta[:, 0], phi[:, 0], theta[:, 1], phi[:, 1]])
+    return np.degrees(np.radians(angles).astype(np.float32).astype(np.float64))
 
 
 @pytest.mark.parametrize("sharp", [False, True], ids=["moderate", "sharp"])

@@ -18,8 +18,8 @@
 // @param fresnel enum schlick dielectric none | Fresnel term F
 
 float microfacet_D(float NoH) {
-    if (distribution == DISTRIBUTION_BLINN) return D_blinn(NoH, atan(m));
-    if (distribution == DISTRIBUTION_GAUSSIAN) return D_gaussian(NoH, atan(m));
+    if (distribution == DISTRIBUTION_BLINN) return D_blinn(NoH, precise_atan(m, 1.0));
+    if (distribution == DISTRIBUTION_GAUSSIAN) return D_gaussian(NoH, precise_atan(m, 1.0));
     return D_beckmann(NoH, m);
 }
 

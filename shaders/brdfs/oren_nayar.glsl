@@ -13,8 +13,8 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     float s2 = sigma * sigma;
     float A = 1.0 - 0.5 * s2 / (s2 + 0.33);
     float B = 0.45 * s2 / (s2 + 0.09);
-    float theta_i = atan(length(cross(N, L)), NoL);
-    float theta_o = atan(length(cross(N, V)), NoV);
+    float theta_i = precise_atan(length(cross(N, L)), NoL);
+    float theta_o = precise_atan(length(cross(N, V)), NoV);
     // cos(phi_i - phi_o) from the projections of L and V onto the tangent plane.
     vec3 Lt = L - NoL * N;
     vec3 Vt = V - NoV * N;

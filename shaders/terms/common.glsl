@@ -11,9 +11,17 @@ float tan2_from_cos(float c) {
     return max(1.0 - c2, 0.0) / c2;
 }
 
-// The angle whose cosine is c. atan is used because acos is imprecise on some drivers
-// (llvmpipe: 1.5e-4 rad), which matters for exponentials of the angle.
+// atan(y, x) to float precision. Some drivers' inverse trigonometry is coarse (llvmpipe:
+// errors of 3e-6 rad), which exponentials of the angle amplify; one Newton step on
+// y cos(a) - x sin(a) = 0 with the accurate sin and cos fixes it.
+float precise_atan(float y, float x) {
+    float a = atan(y, x);
+    float r = length(vec2(x, y));
+    return r > 0.0 ? a + (y * cos(a) - x * sin(a)) / r : a;
+}
+
+// The angle whose cosine is c.
 float angle_from_cos(float c) {
     c = clamp(c, -1.0, 1.0);
-    return atan(sqrt(max(1.0 - c * c, 0.0)), c);
+    return precise_atan(sqrt(max(1.0 - c * c, 0.0)), c);
 }
