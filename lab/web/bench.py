@@ -1,0 +1,78 @@
+"""`brdf-lab web-bench`: how fast the web lab draws in headless Chromium (SwiftShader)."""
+
+from __future__ import annotations
+
+import statistics
+import tempfile
+from dataclasses import dataclass
+
+FIRST_RENDER_TARGET_MS = 1000.0
+SLIDER_P95_TARGET_MS = 33.0
+
+
+@dataclass
+class WebBench:
+    size: int
+    model: str
+    first_render_ms: list[float]
+    frame_ms: list[float]
+    renderer: str
+
+    @property
+    def p95(self) -> float:
+        ordered = sorted(self.frame_ms)
+        return ordered[min(len(ordered) - 1, round(0.95 * (len(ordered) - 1)))]
+
+    def report(self) -> str:
+        first = statistics.median(self.first_render_ms)
+        verdict = lambda ok: "ok" if ok else "MISSED"  # noqa: E731
+        return "\n".join([
+            f"web lab, headless Chromium ({self.renderer}), {self.model} at "
+            f"{self.size}x{self.size}:",
+            f"  first render after load: median {first:.0f} ms over {len(self.first_render_ms)} "
+            f"loads (max {max(self.first_render_ms):.0f} ms); target <= "
+            f"{FIRST_RENDER_TARGET_MS:.0f} ms: {verdict(first <= FIRST_RENDER_TARGET_MS)}",
+            f"  slider frame: p50 {statistics.median(self.frame_ms):.1f} ms, p95 {self.p95:.1f} ms "
+            f"over {len(self.frame_ms)} frames; target p95 <= {SLIDER_P95_TARGET_MS:.0f} ms: "
+            f"{verdict(self.p95 <= SLIDER_P95_TARGET_MS)}",
+        ])
+
+
+def first_float_param(model_name: str) -> str:
+    from lab.models import load_model
+
+    model = load_model(model_name)
+    for p in model.params.values():
+        if p.kind == "float":
+            return p.name
+    raise ValueError(f"model {model_name} has no float parameter to move")
+
+
+def run(size: int = 512, model: str = "phong", loads: int = 3, steps: int = 120) -> WebBench:
+    """Time page load -> first sphere (performance.now() at the first finished frame, i.e.
+    since navigation start) and the frame time while a slider moves."""
+    from lab.web.browser import chromium
+    from lab.web.site import export, serving
+
+    param = first_float_param(model)
+    with tempfile.TemporaryDirectory() as tmp, serving(export(tmp).parent) as url, \
+            chromium() as browser:
+        first = []
+        frames: list[float] = []
+        renderer = "?"
+        for _ in range(max(1, loads)):
+            page = browser.new_page(viewport={"width": 1280, "height": 1000})
+            page.goto(f"{url}index.html#model={model}&size={size}&light=30,0")
+            page.evaluate("window.brdfLab.ready")
+            first.append(page.evaluate("brdfLab.state.firstRenderMs"))
+            if not frames:
+                renderer = page.evaluate(
+                    "(() => { const gl = brdfLab.panel(0).gl;"
+                    " const ext = gl.getExtension('WEBGL_debug_renderer_info');"
+                    " return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL)"
+                    " : gl.getParameter(gl.RENDERER); })()"
+                )
+                page.evaluate(f"brdfLab.sliderFrames(0, '{param}', 10)")  # warm up
+                frames = page.evaluate(f"brdfLab.sliderFrames(0, '{param}', {steps})")
+            page.close()
+    return WebBench(size, model, first, frames, renderer)

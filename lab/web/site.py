@@ -1,0 +1,107 @@
+"""The web lab as a static site: page assets, the shader files and a manifest of models."""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import http.server
+import json
+import shutil
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+
+from lab.models import SHADER_DIR, model_names
+
+STATIC_DIR = Path(__file__).resolve().parent / "static"
+
+
+def manifest() -> dict:
+    """What the page loads: the model names and every shader file (paths under shaders/)."""
+    files = sorted(p.relative_to(SHADER_DIR).as_posix() for p in SHADER_DIR.rglob("*.glsl"))
+    return {"models": model_names(), "files": files}
+
+
+def export(outdir: str | Path) -> Path:
+    """Write a self-contained static site (page, shaders, manifest.json) into `outdir`."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    for item in STATIC_DIR.iterdir():
+        if item.is_file():
+            shutil.copy2(item, outdir / item.name)
+    target = outdir / "shaders"
+    if target.exists():
+        shutil.rmtree(target)
+    shutil.copytree(SHADER_DIR, target, ignore=shutil.ignore_patterns("__pycache__"))
+    (outdir / "manifest.json").write_text(json.dumps(manifest(), indent=1) + "\n", encoding="utf-8")
+    (outdir / ".nojekyll").write_text("", encoding="utf-8")  # GitHub Pages: serve files as-is
+    return outdir / "index.html"
+
+
+class LabHandler(http.server.SimpleHTTPRequestHandler):
+    """Serves the page from lab/web/static and the live shader files from shaders/.
+
+    Nothing is cached, so an edited model shows up on reload.
+    """
+
+    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
+                      ".js": "text/javascript", ".mjs": "text/javascript",
+                      ".glsl": "text/plain; charset=utf-8", ".md": "text/plain; charset=utf-8"}
+
+    def translate_path(self, path: str) -> str:
+        clean = path.split("?", 1)[0].split("#", 1)[0]
+        if clean == "/shaders" or clean.startswith("/shaders/"):
+            base = super().translate_path(clean[len("/shaders"):] or "/")
+            relative = Path(base).relative_to(Path(self.directory).resolve())
+            return str(SHADER_DIR / relative)
+        return super().translate_path(path)
+
+    def do_GET(self) -> None:  # noqa: N802 (http.server's naming)
+        if self.path.split("?", 1)[0] == "/manifest.json":
+            body = json.dumps(manifest()).encode()
+            self.send_response(200)
+            self.send_header("Content-Type", "application/json")
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+            return
+        super().do_GET()
+
+    def end_headers(self) -> None:
+        self.send_header("Cache-Control", "no-store")
+        super().end_headers()
+
+    def log_message(self, format: str, *args) -> None:  # noqa: A002
+        pass  # quiet: the page's own errors are what matter
+
+
+class QuietStaticHandler(LabHandler):
+    """Serves a directory as it is (an exported site or a built deck)."""
+
+    def translate_path(self, path: str) -> str:
+        return http.server.SimpleHTTPRequestHandler.translate_path(self, path)
+
+    def do_GET(self) -> None:  # noqa: N802
+        http.server.SimpleHTTPRequestHandler.do_GET(self)
+
+
+def make_server(port: int = 0, directory: str | Path | None = None) -> http.server.HTTPServer:
+    """A localhost server for the live lab, or for `directory` when given."""
+    if directory is None:
+        handler = functools.partial(LabHandler, directory=str(STATIC_DIR))
+    else:
+        handler = functools.partial(QuietStaticHandler, directory=str(directory))
+    return http.server.ThreadingHTTPServer(("127.0.0.1", port), handler)
+
+
+@contextlib.contextmanager
+def serving(directory: str | Path | None = None) -> Iterator[str]:
+    """Serve in a background thread; yields the base URL (ending in '/')."""
+    server = make_server(0, directory)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        yield f"http://127.0.0.1:{server.server_address[1]}/"
+    finally:
+        server.shutdown()
+        server.server_close()

@@ -1,0 +1,735 @@
+// The web lab: model files from shaders/, headers parsed in the page, one WebGL2 program
+// per model, view and enum choice, assembled exactly as the desktop lab assembles them.
+import { ModelError, defaults, formatG, parseModel } from "./header.js";
+import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
+
+const MAX_LIGHTS = 8;
+const MAX_PANELS = 6;
+const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
+const SLIDER_STEPS = 1000;
+
+const DISPLAY_SHADER = `#version 300 es
+precision highp float;
+uniform highp sampler2D u_image;
+uniform float u_scale;
+out vec4 frag_color;
+// Linear radiance -> sRGB, as lab/plots.py writes PNGs (clamped, no tone curve).
+vec3 srgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
+}
+void main() {
+    vec4 v = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0);
+    frag_color = vec4(srgb(v.rgb * u_scale) * v.a, v.a);
+}
+`;
+
+/** Unit vector for angles in degrees (theta from z, phi from x), as lab.render.direction. */
+export function direction(thetaDeg, phiDeg) {
+  const t = (thetaDeg * Math.PI) / 180;
+  const p = (phiDeg * Math.PI) / 180;
+  return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
+}
+
+// -- shared state -------------------------------------------------------------------------
+const lab = {
+  files: {}, // path under shaders/ -> text
+  models: {}, // name -> parsed model
+  modelErrors: {}, // name -> header error text
+  order: [],
+  panels: [],
+  light: { theta: 45, phi: 0 },
+  exposure: 0,
+  size: 384,
+  cosWeighted: false,
+  embed: false,
+  notes: [],
+  firstRenderMs: null,
+};
+
+const $ = (selector, root = document) => root.querySelector(selector);
+function el(tag, attrs = {}, ...children) {
+  const node = document.createElement(tag);
+  for (const [key, value] of Object.entries(attrs)) {
+    if (key === "class") node.className = value;
+    else if (key.startsWith("on")) node.addEventListener(key.slice(2), value);
+    else node.setAttribute(key, value);
+  }
+  for (const child of children) node.append(child);
+  return node;
+}
+
+// -- values <-> text ----------------------------------------------------------------------
+function sliderToValue(p, position) {
+  const t = position / SLIDER_STEPS;
+  if (p.scale === "log") return p.minimum * Math.pow(p.maximum / p.minimum, t);
+  return p.minimum + (p.maximum - p.minimum) * t;
+}
+function valueToSlider(p, value) {
+  const t = p.scale === "log"
+    ? Math.log(value / p.minimum) / Math.log(p.maximum / p.minimum)
+    : (value - p.minimum) / (p.maximum - p.minimum);
+  return Math.round(Math.min(Math.max(t, 0), 1) * SLIDER_STEPS);
+}
+const round = (x) => Number(x.toPrecision(4));
+function valueText(p, value) {
+  if (p.kind === "color") return value.map((c) => formatG(c)).join(",");
+  if (p.kind === "bool") return value ? "1" : "0";
+  if (p.kind === "float") return formatG(value);
+  return String(value);
+}
+/** Text (hash or text box) -> checked value; throws Error with a one-line message. */
+function parseValue(p, text) {
+  text = text.trim();
+  if (p.kind === "enum") {
+    if (!p.choices.includes(text)) throw new Error(`${p.name} must be one of ${p.choices.join(", ")}`);
+    return text;
+  }
+  if (p.kind === "bool") {
+    if (["1", "true", "yes", "on"].includes(text.toLowerCase())) return true;
+    if (["0", "false", "no", "off"].includes(text.toLowerCase())) return false;
+    throw new Error(`${p.name} is a bool: use 1 or 0`);
+  }
+  let numbers = text.split(",").map(Number);
+  if (text === "" || numbers.some((x) => !Number.isFinite(x))) throw new Error(`${p.name} needs numbers, not '${text}'`);
+  const inRange = (x) => x >= p.minimum && x <= p.maximum;
+  if (p.kind === "color") {
+    if (numbers.length === 1) numbers = [numbers[0], numbers[0], numbers[0]];
+    if (numbers.length !== 3 || !numbers.every(inRange)) throw new Error(`${p.name} is a color: r,g,b each in 0..1`);
+    return numbers;
+  }
+  if (numbers.length !== 1 || !inRange(numbers[0])) {
+    throw new Error(`${p.name} must be a number in [${formatG(p.minimum)}, ${formatG(p.maximum)}]`);
+  }
+  return numbers[0];
+}
+const toHex = (rgb) => "#" + rgb.map((c) => Math.round(Math.min(Math.max(c, 0), 1) * 255).toString(16).padStart(2, "0")).join("");
+const fromHex = (hex) => [1, 3, 5].map((i) => round(parseInt(hex.slice(i, i + 2), 16) / 255));
+
+// -- GL helpers ---------------------------------------------------------------------------
+class CompileFailure extends Error {
+  constructor(errors, log) {
+    super(errors.length ? errors.map((e) => `${e.file}:${e.line}: ${e.message}`).join("\n") : log);
+    this.errors = errors;
+  }
+}
+
+function compile(gl, fragmentText, source) {
+  const shader = (type, text) => {
+    const s = gl.createShader(type);
+    gl.shaderSource(s, text);
+    gl.compileShader(s);
+    return s;
+  };
+  const vs = shader(gl.VERTEX_SHADER, vertexSource("300es"));
+  const fs = shader(gl.FRAGMENT_SHADER, fragmentText);
+  const program = gl.createProgram();
+  gl.attachShader(program, vs);
+  gl.attachShader(program, fs);
+  gl.linkProgram(program);
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
+    const log = (gl.getShaderInfoLog(fs) || "") + (gl.getProgramInfoLog(program) || "");
+    gl.deleteProgram(program);
+    throw new CompileFailure(source ? translateLog(log, source) : [], log);
+  }
+  gl.deleteShader(vs);
+  gl.deleteShader(fs);
+  const uniforms = {};
+  const count = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
+  for (let i = 0; i < count; i++) {
+    const info = gl.getActiveUniform(program, i);
+    const name = info.name.replace(/\[0\]$/, "");
+    uniforms[name] = gl.getUniformLocation(program, info.name);
+  }
+  return { program, uniforms };
+}
+
+function floatTarget(gl, width, height) {
+  const texture = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, texture);
+  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  const fbo = gl.createFramebuffer();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+  gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+  const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  if (status !== gl.FRAMEBUFFER_COMPLETE) throw new Error("this browser cannot render to float textures");
+  return { texture, fbo, width, height };
+}
+
+function floatTexture(gl, width, data) {
+  const texture = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, texture);
+  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, 1, 0, gl.RGBA, gl.FLOAT, data);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  return texture;
+}
+
+// -- a panel: one model, its controls, sphere and polar plot -------------------------------
+class Panel {
+  constructor(name, values = {}) {
+    this.root = el("section", { class: "panel" });
+    this.programs = new Map();
+    this.values = {};
+    this.error = "";
+    this.renders = 0;
+    this.build();
+    this.setModel(name, values);
+  }
+
+  build() {
+    this.picker = el("select", { class: "model-picker", title: "reflection model", onchange: () => {
+      this.setModel(this.picker.value);
+      scheduleRender();
+    } });
+    this.closeButton = el("button", { class: "close", title: "remove this model", onclick: () => removePanel(this) }, "×");
+    this.canvas = el("canvas", { class: "sphere", width: lab.size, height: lab.size });
+    this.canvas.style.width = this.canvas.style.height = `${lab.size}px`;
+    this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size * 0.62) });
+    this.polar.style.width = `${lab.size}px`;
+    this.errorBox = el("pre", { class: "errors", hidden: "" });
+    this.controls = el("div", { class: "controls" });
+    this.formula = el("div", { class: "formula" });
+    this.root.append(el("header", {}, this.picker, this.closeButton), this.canvas, this.polar,
+      this.errorBox, this.formula, this.controls);
+    this.gl = this.canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
+    if (!this.gl) {
+      this.showError("this browser has no WebGL2");
+      return;
+    }
+    if (!this.gl.getExtension("EXT_color_buffer_float")) {
+      this.showError("this browser cannot render to float textures (EXT_color_buffer_float)");
+      this.gl = null;
+      return;
+    }
+    const gl = this.gl;
+    this.vao = gl.createVertexArray();
+    this.target = floatTarget(gl, lab.size, lab.size);
+    this.probeTarget = floatTarget(gl, POLAR_STEPS, 1);
+    this.display = compile(gl, DISPLAY_SHADER, null);
+    this.canvas.addEventListener("pointerdown", (e) => {
+      this.canvas.setPointerCapture(e.pointerId);
+      this.dragLight(e);
+    });
+    this.canvas.addEventListener("pointermove", (e) => {
+      if (e.buttons) this.dragLight(e);
+    });
+  }
+
+  fillPicker() {
+    this.picker.replaceChildren(...lab.order.map((n) => el("option", { value: n }, n)));
+    this.picker.value = this.name;
+  }
+
+  setModel(name, values = {}) {
+    this.name = name;
+    this.fillPicker();
+    this.model = lab.models[name];
+    this.controls.replaceChildren();
+    this.formula.replaceChildren();
+    if (!this.model) {
+      this.showError(lab.modelErrors[name] || `unknown model ${name}`);
+      return;
+    }
+    this.values = { ...defaults(this.model), ...values };
+    this.formula.append(el("strong", {}, this.model.title || name),
+      ...this.model.formula.map((f) => el("code", {}, f)));
+    for (const p of this.model.params) this.controls.append(this.control(p));
+  }
+
+  control(p) {
+    const label = el("label", { title: p.doc }, p.name);
+    const row = el("div", { class: `param param-${p.kind}`, "data-param": p.name }, label);
+    const set = (value) => {
+      this.values[p.name] = value;
+      if (p.kind === "enum") this.programs.clear(); // another constant: compile again
+      scheduleRender();
+    };
+    if (p.kind === "float") {
+      const slider = el("input", { type: "range", min: 0, max: SLIDER_STEPS, step: 1 });
+      const box = el("input", { type: "text", class: "value", size: 6 });
+      const show = () => {
+        slider.value = valueToSlider(p, this.values[p.name]);
+        box.value = formatG(round(this.values[p.name]));
+      };
+      slider.addEventListener("input", () => {
+        set(round(sliderToValue(p, Number(slider.value))));
+        box.value = formatG(this.values[p.name]);
+      });
+      box.addEventListener("change", () => {
+        try {
+          set(parseValue(p, box.value));
+          box.classList.remove("bad");
+        } catch (err) {
+          box.classList.add("bad");
+          box.title = err.message;
+        }
+        show();
+      });
+      show();
+      row.append(slider, box);
+      if (p.scale === "log") row.append(el("span", { class: "scale" }, "log"));
+    } else if (p.kind === "color") {
+      const picker = el("input", { type: "color", value: toHex(this.values[p.name]) });
+      const box = el("input", { type: "text", class: "value", size: 12, value: valueText(p, this.values[p.name]) });
+      picker.addEventListener("input", () => {
+        set(fromHex(picker.value));
+        box.value = valueText(p, this.values[p.name]);
+      });
+      box.addEventListener("change", () => {
+        try {
+          set(parseValue(p, box.value));
+          picker.value = toHex(this.values[p.name]);
+          box.classList.remove("bad");
+        } catch (err) {
+          box.classList.add("bad");
+          box.title = err.message;
+        }
+      });
+      row.append(picker, box);
+    } else if (p.kind === "bool") {
+      const box = el("input", { type: "checkbox" });
+      box.checked = this.values[p.name];
+      box.addEventListener("change", () => set(box.checked));
+      row.append(box);
+    } else {
+      const select = el("select", {}, ...p.choices.map((c) => el("option", { value: c }, c)));
+      select.value = this.values[p.name];
+      select.addEventListener("change", () => set(select.value));
+      row.append(select);
+    }
+    return row;
+  }
+
+  /** Moves the slider of `name` to a position (0..1000) as a user would. */
+  moveSlider(name, position) {
+    const slider = $(`[data-param="${name}"] input[type=range]`, this.root);
+    slider.value = position;
+    slider.dispatchEvent(new Event("input"));
+    return this.values[name];
+  }
+
+  showError(text) {
+    this.error = text;
+    this.errorBox.textContent = text;
+    this.errorBox.hidden = !text;
+  }
+
+  dragLight(event) {
+    const rect = this.canvas.getBoundingClientRect();
+    let x = ((event.clientX - rect.left) / rect.width) * 2 - 1;
+    let y = 1 - ((event.clientY - rect.top) / rect.height) * 2;
+    const r = Math.hypot(x, y);
+    if (r > 1) [x, y] = [x / r, y / r];
+    const z = Math.sqrt(Math.max(0, 1 - x * x - y * y));
+    setLight((Math.acos(z) * 180) / Math.PI, (Math.atan2(y, x) * 180) / Math.PI);
+  }
+
+  program(view) {
+    const enums = Object.fromEntries(this.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, this.values[p.name]]));
+    const key = `${view}|${JSON.stringify(enums)}`;
+    if (!this.programs.has(key)) {
+      const preamble = view === "sphere" ? `const int LIGHT_COUNT = 1;` : "";
+      const source = assembleFragment(this.model, view, lab.files, { target: "300es", preamble, enums });
+      this.programs.set(key, compile(this.gl, source.text, source));
+    }
+    return this.programs.get(key);
+  }
+
+  setParams(gl, compiled) {
+    for (const p of this.model.params) {
+      const location = compiled.uniforms[p.name];
+      if (location === undefined || p.kind === "enum") continue;
+      const v = this.values[p.name];
+      if (p.kind === "float") gl.uniform1f(location, v);
+      else if (p.kind === "color") gl.uniform3fv(location, v);
+      else gl.uniform1i(location, v ? 1 : 0);
+    }
+  }
+
+  render() {
+    if (!this.gl || !this.model) return;
+    const gl = this.gl;
+    try {
+      this.renderSphere(gl);
+      this.renderPolar(gl);
+      this.showError("");
+    } catch (err) {
+      if (!(err instanceof CompileFailure || err instanceof ModelError)) throw err;
+      this.showError(err instanceof CompileFailure ? `the shader does not compile:\n${err.message}` : err.message);
+    }
+    this.renders++;
+  }
+
+  renderSphere(gl) {
+    const compiled = this.program("sphere");
+    const u = compiled.uniforms;
+    gl.useProgram(compiled.program);
+    gl.bindVertexArray(this.vao);
+    this.setParams(gl, compiled);
+    const dirs = new Float32Array(3 * MAX_LIGHTS);
+    const rgb = new Float32Array(3 * MAX_LIGHTS);
+    dirs.set(direction(lab.light.theta, lab.light.phi));
+    rgb.set([1, 1, 1]);
+    gl.uniform2f(u.u_resolution, lab.size, lab.size);
+    if (u.u_light_dir) gl.uniform3fv(u.u_light_dir, dirs);
+    if (u.u_light_rgb) gl.uniform3fv(u.u_light_rgb, rgb);
+    if (u.u_ambient) gl.uniform3f(u.u_ambient, 0, 0, 0);
+    if (u.u_multiply_cos) gl.uniform1i(u.u_multiply_cos, 1);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
+    gl.viewport(0, 0, lab.size, lab.size);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    // Show it: exposure and the sRGB curve, on the canvas.
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.useProgram(this.display.program);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, this.target.texture);
+    gl.uniform1i(this.display.uniforms.u_image, 0);
+    gl.uniform1f(this.display.uniforms.u_scale, Math.pow(2, lab.exposure));
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+  }
+
+  /** The lobe in the plane of incidence, drawn from probe values read back as floats. */
+  renderPolar(gl) {
+    const { theta, phi } = lab.light;
+    const L = new Float32Array(4 * POLAR_STEPS);
+    const V = new Float32Array(4 * POLAR_STEPS);
+    const Ld = direction(theta, phi);
+    for (let i = 0; i < POLAR_STEPS; i++) {
+      const thetaO = i - 90; // positive: the far side from the light (the mirror side)
+      L.set(Ld, 4 * i);
+      V.set(direction(Math.abs(thetaO), thetaO >= 0 ? phi + 180 : phi), 4 * i);
+    }
+    const compiled = this.program("probe");
+    const textures = [floatTexture(gl, POLAR_STEPS, L), floatTexture(gl, POLAR_STEPS, V)];
+    gl.useProgram(compiled.program);
+    gl.bindVertexArray(this.vao);
+    this.setParams(gl, compiled);
+    textures.forEach((t, unit) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, t);
+    });
+    gl.uniform1i(compiled.uniforms.u_L, 0);
+    gl.uniform1i(compiled.uniforms.u_V, 1);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.probeTarget.fbo);
+    gl.viewport(0, 0, POLAR_STEPS, 1);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    const out = new Float32Array(4 * POLAR_STEPS);
+    gl.readPixels(0, 0, POLAR_STEPS, 1, gl.RGBA, gl.FLOAT, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    textures.forEach((t) => gl.deleteTexture(t));
+    this.lobe = out;
+    drawPolar(this.polar, out, theta, this.model.delta);
+  }
+
+  /** The float render of the sphere, rows from the top, as {width, height, data}. */
+  readSphere() {
+    const gl = this.gl;
+    const { width, height } = this.target;
+    const raw = new Float32Array(width * height * 4);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, raw);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    const flipped = new Float32Array(raw.length);
+    const row = width * 4;
+    for (let y = 0; y < height; y++) flipped.set(raw.subarray(y * row, (y + 1) * row), (height - 1 - y) * row);
+    return { width, height, data: flipped };
+  }
+}
+
+function drawPolar(canvas, values, thetaI, delta) {
+  const ctx = canvas.getContext("2d");
+  const w = canvas.width;
+  const h = canvas.height;
+  const cx = w / 2;
+  const cy = h - 14;
+  const radius = Math.min(w / 2 - 10, h - 24);
+  ctx.clearRect(0, 0, w, h);
+  ctx.lineWidth = 1;
+  ctx.strokeStyle = "#8888";
+  ctx.beginPath();
+  ctx.arc(cx, cy, radius, Math.PI, 2 * Math.PI);
+  ctx.moveTo(cx - radius, cy);
+  ctx.lineTo(cx + radius, cy);
+  ctx.moveTo(cx, cy);
+  ctx.lineTo(cx, cy - radius);
+  ctx.stroke();
+  const at = (angleDeg, r) => {
+    const a = (angleDeg * Math.PI) / 180;
+    return [cx + r * Math.sin(a), cy - r * Math.cos(a)];
+  };
+  const ray = (angleDeg, r, color, dash) => {
+    ctx.strokeStyle = color;
+    ctx.setLineDash(dash);
+    ctx.beginPath();
+    ctx.moveTo(cx, cy);
+    ctx.lineTo(...at(angleDeg, r));
+    ctx.stroke();
+    ctx.setLineDash([]);
+  };
+  ray(-thetaI, radius, "#e0a030", []); // toward the light
+  ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
+  const lum = [];
+  for (let i = 0; i < POLAR_STEPS; i++) {
+    let f = 0.2126 * values[4 * i] + 0.7152 * values[4 * i + 1] + 0.0722 * values[4 * i + 2];
+    if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
+    lum.push(Number.isFinite(f) ? Math.max(f, 0) : 0);
+  }
+  const peak = Math.max(...lum);
+  ctx.font = "11px sans-serif";
+  ctx.fillStyle = "#999";
+  const what = lab.cosWeighted ? "f_r cos θo" : "f_r";
+  ctx.fillText(`${what}, plane of incidence; peak ${formatG(round(peak))} sr⁻¹`, 4, 12);
+  if (peak > 0) {
+    ctx.strokeStyle = "#4aa3ff";
+    ctx.fillStyle = "#4aa3ff33";
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.moveTo(cx, cy);
+    lum.forEach((f, i) => ctx.lineTo(...at(i - 90, (radius * f) / peak)));
+    ctx.closePath();
+    ctx.fill();
+    ctx.stroke();
+  }
+  if (delta) {
+    ctx.lineWidth = 3;
+    ray(thetaI, radius, "#ff5a5a", []);
+    ctx.fillStyle = "#ff5a5a";
+    ctx.fillText("δ spike (ideal mirror)", ...at(thetaI, radius * 0.6));
+  }
+}
+
+// -- page-level actions ---------------------------------------------------------------------
+let pending = 0;
+function scheduleRender() {
+  writeHash();
+  if (!pending) pending = requestAnimationFrame(() => {
+    pending = 0;
+    renderAll();
+  });
+}
+
+function renderAll() {
+  for (const panel of lab.panels) panel.render();
+}
+
+function setLight(theta, phi) {
+  lab.light = { theta: round(Math.min(Math.max(theta, 0), 90)), phi: round(((phi % 360) + 540) % 360 - 180) };
+  $("#light-theta").value = lab.light.theta;
+  $("#light-phi").value = lab.light.phi;
+  $("#light-text").textContent = `θ ${formatG(lab.light.theta)}°, φ ${formatG(lab.light.phi)}°`;
+  scheduleRender();
+}
+
+function addPanel(name, values) {
+  if (lab.panels.length >= MAX_PANELS) return null;
+  const panel = new Panel(name, values);
+  lab.panels.push(panel);
+  $("#panels").append(panel.root);
+  return panel;
+}
+
+function removePanel(panel) {
+  if (lab.panels.length <= 1) return;
+  lab.panels.splice(lab.panels.indexOf(panel), 1);
+  panel.root.remove();
+  scheduleRender();
+}
+
+// -- URL hash: model=NAME&PARAM=VALUE...&model=NAME2...&light=THETA,PHI ----------------------
+function readHash() {
+  const params = new URLSearchParams(location.hash.slice(1));
+  const panels = [];
+  for (const [key, value] of params) {
+    if (key === "model") panels.push({ name: value, values: {} });
+    else if (key === "light") {
+      const [theta, phi] = value.split(",").map(Number);
+      if (Number.isFinite(theta)) lab.light = { theta, phi: Number.isFinite(phi) ? phi : 0 };
+      else lab.notes.push(`light=${value}: write THETA,PHI in degrees`);
+    } else if (key === "exposure") lab.exposure = Number(value) || 0;
+    else if (key === "size") lab.size = Math.min(Math.max(Math.round(Number(value)) || 384, 32), 1024);
+    else if (key === "embed") lab.embed = value !== "0";
+    else if (key === "cos") lab.cosWeighted = value !== "0";
+    else if (panels.length) panels[panels.length - 1].values[key] = value;
+    else lab.notes.push(`${key}=${value}: give model=NAME before its parameters`);
+  }
+  // Check each value against its model's header; bad ones are reported and left out.
+  for (const panel of panels) {
+    const model = lab.models[panel.name];
+    if (!model) {
+      lab.notes.push(`unknown model ${panel.name}: choose one of ${lab.order.join(", ")}`);
+      panel.name = null;
+      continue;
+    }
+    const checked = {};
+    for (const [key, text] of Object.entries(panel.values)) {
+      const p = model.params.find((q) => q.name === key);
+      try {
+        if (!p) throw new Error(`model ${model.name} has no parameter ${key}`);
+        checked[key] = parseValue(p, text);
+      } catch (err) {
+        lab.notes.push(err.message);
+      }
+    }
+    panel.values = checked;
+  }
+  return panels.filter((p) => p.name);
+}
+
+function writeHash() {
+  const parts = [];
+  for (const panel of lab.panels) {
+    if (!panel.model) continue;
+    parts.push(`model=${panel.name}`);
+    for (const p of panel.model.params) {
+      const v = panel.values[p.name];
+      if (valueText(p, v) !== valueText(p, p.default)) parts.push(`${p.name}=${valueText(p, v)}`);
+    }
+  }
+  parts.push(`light=${formatG(lab.light.theta)},${formatG(lab.light.phi)}`);
+  if (lab.exposure) parts.push(`exposure=${formatG(lab.exposure)}`);
+  if (lab.size !== 384) parts.push(`size=${lab.size}`);
+  if (lab.cosWeighted) parts.push("cos=1");
+  if (lab.embed) parts.push("embed=1");
+  history.replaceState(null, "", `#${parts.join("&")}`);
+}
+
+// -- loading --------------------------------------------------------------------------------
+async function fetchText(path) {
+  const response = await fetch(path);
+  if (!response.ok) throw new Error(`cannot load ${path} (HTTP ${response.status})`);
+  return response.text();
+}
+
+function addModelText(label, code, expectedName = null) {
+  const name = expectedName || label.split("/").pop().replace(/\.glsl$/, "");
+  try {
+    lab.models[name] = parseModel(code, label, expectedName);
+    delete lab.modelErrors[name];
+  } catch (err) {
+    if (!(err instanceof ModelError)) throw err;
+    delete lab.models[name];
+    lab.modelErrors[name] = err.message;
+  }
+  if (!lab.order.includes(name)) lab.order.push(name);
+  return name;
+}
+
+async function load() {
+  const manifest = JSON.parse(await fetchText("manifest.json"));
+  const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
+  manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
+  for (const name of manifest.models) addModelText(`shaders/brdfs/${name}.glsl`, lab.files[`brdfs/${name}.glsl`], name);
+}
+
+function buildPage() {
+  document.body.classList.toggle("embed", lab.embed);
+  $("#light-theta").addEventListener("input", (e) => setLight(Number(e.target.value), lab.light.phi));
+  $("#light-phi").addEventListener("input", (e) => setLight(lab.light.theta, Number(e.target.value)));
+  $("#exposure").value = lab.exposure;
+  $("#exposure").addEventListener("input", (e) => {
+    lab.exposure = Number(e.target.value);
+    scheduleRender();
+  });
+  $("#cos-weighted").checked = lab.cosWeighted;
+  $("#cos-weighted").addEventListener("change", (e) => {
+    lab.cosWeighted = e.target.checked;
+    scheduleRender();
+  });
+  $("#add-model").addEventListener("click", () => {
+    addPanel(lab.panels[lab.panels.length - 1]?.name || lab.order[0]);
+    scheduleRender();
+  });
+  $("#open-file").addEventListener("change", async (e) => {
+    for (const file of e.target.files) {
+      const name = addModelText(file.name, await file.text());
+      lab.panels.forEach((p) => p.fillPicker());
+      addPanel(name);
+    }
+    scheduleRender();
+  });
+}
+
+/** Renders every panel now and waits until the GPU is done; returns milliseconds. */
+function renderNow() {
+  const start = performance.now();
+  renderAll();
+  for (const panel of lab.panels) panel.gl?.finish();
+  return performance.now() - start;
+}
+
+async function main() {
+  await load();
+  const panels = readHash();
+  buildPage();
+  if (!panels.length) panels.push({ name: lab.order.includes("phong") ? "phong" : lab.order[0], values: {} });
+  for (const p of panels) addPanel(p.name, p.values);
+  $("#notes").textContent = lab.notes.join("\n");
+  $("#notes").hidden = !lab.notes.length;
+  setLight(lab.light.theta, lab.light.phi);
+  if (pending) cancelAnimationFrame(pending);
+  pending = 0;
+  renderNow();
+  lab.firstRenderMs = performance.now(); // since navigation start
+  writeHash();
+}
+
+const toBase64 = (floats) => {
+  const bytes = new Uint8Array(floats.buffer);
+  let text = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(text);
+};
+
+// For tests, slides and benchmarks.
+window.brdfLab = {
+  ready: main(),
+  state: lab,
+  panel: (i = 0) => lab.panels[i],
+  renderNow,
+  setLight: (theta, phi) => {
+    setLight(theta, phi);
+    return renderNow();
+  },
+  setModel(i, name, values = {}) {
+    lab.panels[i].setModel(name, values);
+    return renderNow();
+  },
+  values: (i = 0) => ({ ...lab.panels[i].values }),
+  errors: (i = 0) => lab.panels[i].error,
+  notes: () => lab.notes.slice(),
+  moveSlider(i, name, position) {
+    const value = lab.panels[i].moveSlider(name, position);
+    renderNow();
+    return value;
+  },
+  /** The float sphere of panel i, base64 float32 RGBA, row 0 at the top. */
+  readSphere(i = 0) {
+    const { width, height, data } = lab.panels[i].readSphere();
+    return { width, height, data: toBase64(data) };
+  },
+  /** Polar probe values of panel i (181 x RGBA, theta_o = -90..90). */
+  readLobe: (i = 0) => Array.from(lab.panels[i].lobe || []),
+  loadModel(label, code) {
+    const name = addModelText(label, code);
+    lab.panels.forEach((p) => p.fillPicker());
+    const panel = addPanel(name);
+    renderNow();
+    return panel ? panel.error : lab.modelErrors[name];
+  },
+  /** Frame times (ms) while a slider of panel i moves through `steps` positions. */
+  sliderFrames(i, name, steps = 60) {
+    const times = [];
+    for (let k = 0; k < steps; k++) {
+      const start = performance.now();
+      lab.panels[i].moveSlider(name, Math.round((SLIDER_STEPS * ((k * 37) % steps)) / steps));
+      renderAll();
+      lab.panels[i].gl.finish();
+      times.push(performance.now() - start);
+    }
+    return times;
+  },
+};
