@@ -1,0 +1,11 @@
+// Exercise 07: the geometric attenuation factor G of V-shaped grooves.
+// This file stands in for shaders/terms/geometry.glsl: the library's Cook-Torrance
+// model (shaders/brdfs/cook_torrance.glsl) calls G_vgroove.
+
+// G = min(1, 2 (N.H)(N.V) / (V.H), 2 (N.H)(N.L) / (V.H))   (Torrance-Sparrow V-grooves)
+float G_vgroove(float NoL, float NoV, float NoH, float VoH) {
+    // TODO: the masking term (light reflected towards V blocked by the next groove wall),
+    // TODO: the shadowing term (light from L not reaching the wall),
+    // TODO: and G, the smallest of 1 and the two terms. Guard V.H against 0 with EPS.
+    return 1.0;
+}

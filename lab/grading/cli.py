@@ -1,0 +1,183 @@
+"""Sub-commands of the auto-grader: grade, grade-all, gradescope-zip, grade-bench."""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+
+from lab.cli import UsageError
+
+
+def _exercises(paths: list[str]):
+    from lab.grading.exercise import ExerciseError, find_exercises
+
+    found = []
+    try:
+        for path in paths:
+            found += find_exercises(path)
+    except ExerciseError as err:
+        raise UsageError(str(err)) from None
+    return found
+
+
+def locate(student: Path, exercise) -> Path:
+    """A student's file for an exercise: NN_topic/FILE, exercises/NN_topic/FILE or FILE."""
+    candidates = [student / exercise.name / exercise.student_file,
+                  student / "exercises" / exercise.name / exercise.student_file,
+                  student / exercise.student_file]
+    for candidate in candidates:
+        if candidate.exists() or candidate.is_symlink():
+            return candidate
+    return candidates[-1]
+
+
+def _output(path: str | None) -> Path | None:
+    if path is None:
+        return None
+    out = Path(path)
+    if out.is_dir() or not (out.parent if str(out.parent) else Path(".")).is_dir():
+        raise UsageError(f"cannot write {out}: give a file in an existing folder")
+    return out
+
+
+def cmd_grade(args) -> int:
+    from lab.grading import report
+    from lab.grading.runner import Pool, Task
+
+    exercises = _exercises(args.exercise)
+    if args.make_references:
+        from lab.grading.references import make_references
+
+        for path in args.exercise:
+            for written in make_references(path):
+                print(f"wrote {written}")
+        return 0
+    if args.submission and len(exercises) != 1:
+        raise UsageError("--submission grades one exercise: give one EXERCISE_DIR (or use --from)")
+    if args.seed is not None and not all(e.solution.is_file() for e in exercises):
+        raise UsageError("--seed renders the solutions live: solutions/ must sit beside exercises/")
+    outputs = {k: _output(getattr(args, k)) for k in ("json", "html", "classroom")}
+    tasks = []
+    for exercise in exercises:
+        if args.submission:
+            submission = Path(args.submission)
+        elif args.from_dir:
+            submission = locate(Path(args.from_dir), exercise)
+        else:
+            submission = exercise.stub
+        tasks.append(Task(exercise, submission, args.seed))
+    start = time.monotonic()
+    with Pool(1, args.timeout) as pool:
+        pool.run(tasks)
+    seconds = time.monotonic() - start
+    report.terminal(tasks)
+    if outputs["json"]:
+        report.write_json(report.gradescope(tasks, seconds), outputs["json"])
+    if outputs["html"]:
+        outputs["html"].write_text(report.html_report(tasks), encoding="utf-8")
+    result = report.classroom(tasks)
+    if outputs["classroom"]:
+        report.write_json(result, outputs["classroom"])
+    report.write_github_output(result)
+    return 0 if all(t.passed for t in tasks) else 1
+
+
+def cmd_grade_all(args) -> int:
+    from rich.progress import Progress
+
+    from lab.grading import report
+    from lab.grading.runner import Pool, Task
+
+    root = Path(args.submissions)
+    if not root.is_dir():
+        raise UsageError(f"{root}: not a folder (give one sub-folder per student)")
+    exercises = _exercises(args.exercises)
+    students = sorted(p for p in root.iterdir() if p.is_dir() and not p.name.startswith("."))
+    if not students:
+        raise UsageError(f"{root}: no student sub-folders in it")
+    out = Path(args.out)
+    try:
+        (out / "reports").mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise UsageError(f"cannot create {out}: {err.strerror}") from None
+    tasks = {s.name: [Task(e, locate(s, e), args.seed, key=f"{s.name}/{e.name}") for e in exercises]
+             for s in students}
+    remaining = {name: len(ts) for name, ts in tasks.items()}
+    start = time.monotonic()
+    with Progress() as progress, Pool(args.workers, args.timeout) as pool:
+        bar = progress.add_task(f"grading {len(students)} students", total=len(students) * len(exercises))
+
+        def done(task: Task) -> None:
+            progress.advance(bar)
+            student = task.key.split("/")[0]
+            remaining[student] -= 1
+            if remaining[student] == 0:  # write as we go: a long run leaves partial results
+                mine = tasks[student]
+                html = report.html_report(mine, f"Grading report: {student}")
+                (out / "reports" / f"{student}.html").write_text(html, encoding="utf-8")
+                report.write_json(report.gradescope(mine, sum(t.seconds for t in mine)),
+                                  out / "reports" / f"{student}.json")
+
+        pool.run([t for ts in tasks.values() for t in ts], done)
+    seconds = time.monotonic() - start
+    report.gradebook(list(tasks.items()), [e.name for e in exercises], out / "gradebook.csv")
+    full = sum(1 for ts in tasks.values() if all(t.passed for t in ts))
+    print(f"graded {len(students)} students x {len(exercises)} exercises in {seconds:.1f} s; "
+          f"{full} with full marks; wrote {out / 'gradebook.csv'} and {out / 'reports'}/")
+    return 0 if full == len(students) else 1
+
+
+def cmd_gradescope_zip(args) -> int:
+    from lab.grading.package import gradescope_zip
+
+    exercises = _exercises(args.exercise)
+    out = _output(args.output)
+    gradescope_zip(exercises, out, seed=args.seed)
+    print(f"wrote {out}: upload it as the autograder of a Gradescope programming assignment")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from lab.grading import bench
+
+    bench.run(submissions=args.submissions, workers=args.workers)
+    return 0
+
+
+def register(sub) -> None:
+    workers = min(2, os.cpu_count() or 1)
+    p = sub.add_parser("grade", help="grade a student's shader against an exercise")
+    p.add_argument("exercise", nargs="+", metavar="EXERCISE_DIR",
+                   help="exercise folder(s), or a folder of exercise folders")
+    p.add_argument("--submission", metavar="FILE", help="the file to grade (default: the stub)")
+    p.add_argument("--from", dest="from_dir", metavar="DIR",
+                   help="find each exercise's file in DIR (NN_topic/FILE or FILE)")
+    p.add_argument("--json", metavar="results.json", help="write Gradescope results.json")
+    p.add_argument("--html", metavar="report.html", help="write a self-contained HTML report")
+    p.add_argument("--classroom", metavar="FILE", help="write the GitHub Classroom result JSON")
+    p.add_argument("--seed", type=int, help="hidden mode: random parameters and lights")
+    p.add_argument("--timeout", type=float, default=10.0, help="seconds per check (default 10)")
+    p.add_argument("--make-references", action="store_true",
+                   help="(instructor) render references/ from solutions/ and exit")
+    p.set_defaults(func=cmd_grade)
+
+    p = sub.add_parser("grade-all", help="grade a class: one sub-folder per student")
+    p.add_argument("submissions", metavar="SUBMISSIONS_DIR")
+    p.add_argument("--exercises", nargs="+", default=["exercises"], metavar="DIR")
+    p.add_argument("--out", default="grades", help="folder for gradebook.csv and reports/")
+    p.add_argument("--workers", type=int, default=workers, help=f"processes (default {workers})")
+    p.add_argument("--seed", type=int, help="hidden mode: random parameters and lights")
+    p.add_argument("--timeout", type=float, default=10.0, help="seconds per check (default 10)")
+    p.set_defaults(func=cmd_grade_all)
+
+    p = sub.add_parser("gradescope-zip", help="build a Gradescope autograder zip")
+    p.add_argument("exercise", nargs="+", metavar="EXERCISE_DIR")
+    p.add_argument("-o", "--output", default="autograder.zip")
+    p.add_argument("--seed", type=int, help="grade in hidden mode (bundles the solutions)")
+    p.set_defaults(func=cmd_gradescope_zip)
+
+    p = sub.add_parser("grade-bench", help="grading latency and grade-all throughput")
+    p.add_argument("--submissions", type=int, default=100)
+    p.add_argument("--workers", type=int, default=workers)
+    p.set_defaults(func=cmd_bench)

@@ -1,0 +1,203 @@
+"""Grading results in every format: terminal, HTML, Gradescope, GitHub Classroom, CSV."""
+
+from __future__ import annotations
+
+import base64
+import csv
+import html
+import json
+import os
+from pathlib import Path
+
+from lab.grading.checks import CheckResult
+from lab.grading.runner import Task
+
+ROW_HEADER = ("theta_i", "phi_i", "theta_o", "phi_o", "expected", "got")
+
+
+def points(value: float) -> str:
+    return f"{value:g}"
+
+
+def check_text(result: CheckResult) -> str:
+    """The message of a check with its failing rows and compile errors, as plain text."""
+    lines = [result.message]
+    if result.rows:
+        lines.append("  ".join(ROW_HEADER))
+        lines += ["  ".join(str(v) for v in row) for row in result.rows]
+    if len(result.errors) > 1:
+        lines += result.errors[1:]
+    return "\n".join(lines)
+
+
+def test_name(task: Task, result: CheckResult) -> str:
+    return f"{task.exercise.name}.{result.name}"
+
+
+def terminal(tasks: list[Task], console=None) -> None:
+    """One line per check with its points, then the total."""
+    from rich.console import Console
+    from rich.markup import escape
+
+    console = console or Console(highlight=False, soft_wrap=True)
+    for task in tasks:
+        console.print(f"[bold]{task.exercise.name}[/] {escape(task.exercise.title)}  "
+                      f"[dim]{escape(str(task.submission))}[/]")
+        for result in task.checks():
+            mark = "[green]PASS[/]" if result.passed else (
+                "[red]FAIL[/]" if result.status == "failed" else "[magenta]ERROR[/]")
+            console.print(f"  {mark} {result.name:28s} {points(result.points):>4}/"
+                          f"{points(result.max_points):<4} {escape(result.message)}")
+            for row in result.rows[:3]:
+                console.print("       " + escape(", ".join(f"{h}={v}" for h, v in zip(ROW_HEADER, row))))
+            for error in result.errors[1:4]:
+                console.print("       " + escape(error))
+    score = sum(t.score for t in tasks)
+    total = sum(t.max_score for t in tasks)
+    console.print(f"[bold]total {points(score)}/{points(total)}[/]")
+
+
+def gradescope(tasks: list[Task], seconds: float) -> dict:
+    """results.json as the Gradescope autograder specification describes it."""
+    tests = []
+    for task in tasks:
+        for result in task.checks():
+            tests.append({
+                "name": test_name(task, result),
+                "score": result.points,
+                "max_score": result.max_points,
+                "status": "passed" if result.passed else "failed",
+                "output": check_text(result),
+                "visibility": "visible",
+            })
+    passed = sum(1 for t in tests if t["status"] == "passed")
+    return {
+        "score": sum(t.score for t in tasks),
+        "execution_time": round(seconds, 3),
+        "output": f"{passed} of {len(tests)} checks passed",
+        "visibility": "visible",
+        "stdout_visibility": "visible",
+        "tests": tests,
+    }
+
+
+def classroom(tasks: list[Task]) -> dict:
+    """The result that classroom-resources/autograding-grading-reporter reads."""
+    tests = []
+    for task in tasks:
+        for result in task.checks():
+            tests.append({
+                "name": test_name(task, result),
+                "status": "pass" if result.passed else ("error" if result.status == "error" else "fail"),
+                "score": result.points,
+                "max_score": result.max_points,
+                "message": check_text(result),
+                "filename": str(task.submission),
+                "execution_time": f"{task.seconds:.2f}s",
+            })
+    status = "pass" if all(t["status"] == "pass" for t in tests) else "fail"
+    return {"version": 1, "status": status, "max_score": sum(t.max_score for t in tasks),
+            "tests": tests}
+
+
+def write_github_output(result: dict, name: str = "result") -> bool:
+    """In GitHub Actions, append NAME=<base64 JSON> to $GITHUB_OUTPUT for the reporter."""
+    target = os.environ.get("GITHUB_OUTPUT")
+    if not os.environ.get("GITHUB_ACTIONS") or not target:
+        return False
+    encoded = base64.b64encode(json.dumps(result).encode()).decode()
+    with open(target, "a", encoding="utf-8") as handle:
+        handle.write(f"{name}={encoded}\n")
+    return True
+
+
+def write_json(data: dict, path: Path) -> None:
+    path.write_text(json.dumps(data, indent=2), encoding="utf-8")
+
+
+# -- HTML -------------------------------------------------------------------------------------
+STYLE = """
+body { font-family: system-ui, sans-serif; margin: 2em; color: #222; max-width: 70em; }
+h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
+.check { margin: 1em 0; padding: 0.5em 1em; border-left: 6px solid #c33; background: #fafafa; }
+.check.passed { border-color: #3a3; }
+.check.error { border-color: #a3a; }
+.images figure { display: inline-block; margin: 0.3em; text-align: center; font-size: 90%; }
+.images img { width: 192px; height: 192px; image-rendering: pixelated; background: #000; }
+table { border-collapse: collapse; font-family: monospace; font-size: 90%; }
+td, th { border: 1px solid #ccc; padding: 0.15em 0.5em; text-align: right; }
+pre { background: #fee; padding: 0.5em; white-space: pre-wrap; }
+"""
+
+
+def _svg_curve(curve: dict) -> str:
+    """The polar lobe (luminance) of the solution and the submission, as inline SVG."""
+    import math
+
+    size, pad = 320, 10
+    peak = max([*curve["expected"], *curve["got"], 1e-9])
+    paths = []
+    for key, colour in (("expected", "#2a6"), ("got", "#c33")):
+        points_ = []
+        for theta, value in zip(curve["theta_o"], curve[key]):
+            r = min(max(value, 0.0) / peak, 1.2) * (size / 2 - pad)
+            a = math.radians(theta)
+            points_.append(f"{size / 2 + r * math.sin(a):.1f},{size / 2 - r * math.cos(a):.1f}")
+        paths.append(f'<polyline fill="none" stroke="{colour}" stroke-width="2" '
+                     f'points="{" ".join(points_)}"/>')
+    return (f'<svg width="{size}" height="{size // 2 + pad}" viewBox="0 0 {size} {size // 2 + pad}">'
+            f'<line x1="0" y1="{size / 2}" x2="{size}" y2="{size / 2}" stroke="#999"/>'
+            + "".join(paths) + '</svg><div><span style="color:#2a6">solution</span> / '
+            '<span style="color:#c33">yours</span> (luminance of f_r in the plane of incidence, '
+            f'light at {curve["theta_i"]:g} deg on the left)</div>')
+
+
+def _check_html(result: CheckResult) -> str:
+    e = html.escape
+    parts = [f'<div class="check {e(result.status)}"><b>{e(result.name)}</b> '
+             f'{points(result.points)}/{points(result.max_points)} - {e(result.message)}']
+    if result.errors:
+        parts.append("<pre>" + e("\n".join(result.errors)) + "</pre>")
+    if result.images:
+        parts.append('<div class="images">')
+        for label, data in result.images.items():
+            uri = "data:image/png;base64," + base64.b64encode(data).decode()
+            parts.append(f'<figure><img src="{uri}" alt="{e(label)}"><figcaption>{e(label)}'
+                         "</figcaption></figure>")
+        parts.append("</div>")
+    if result.curve:
+        parts.append(_svg_curve(result.curve))
+    if result.rows:
+        header = "".join(f"<th>{h}</th>" for h in ROW_HEADER)
+        body = "".join("<tr>" + "".join(f"<td>{e(str(v))}</td>" for v in row) + "</tr>"
+                       for row in result.rows)
+        parts.append(f"<table><tr>{header}</tr>{body}</table>")
+    parts.append("</div>")
+    return "".join(parts)
+
+
+def html_report(tasks: list[Task], title: str = "Grading report") -> str:
+    """A self-contained page: images inline as base64, no external files."""
+    e = html.escape
+    score = sum(t.score for t in tasks)
+    total = sum(t.max_score for t in tasks)
+    body = [f"<h1>{e(title)}</h1><p>Total: <b>{points(score)} / {points(total)}</b></p>"]
+    for task in tasks:
+        body.append(f"<h2>{e(task.exercise.name)}: {e(task.exercise.title)} - "
+                    f"{points(task.score)} / {points(task.max_score)}</h2>"
+                    f"<p>File: <code>{e(str(task.submission))}</code></p>")
+        body += [_check_html(r) for r in task.checks()]
+    return (f'<!DOCTYPE html><html><head><meta charset="utf-8"><title>{e(title)}</title>'
+            f"<style>{STYLE}</style></head><body>{''.join(body)}</body></html>")
+
+
+def gradebook(rows: list[tuple[str, list[Task]]], exercises: list[str], path: Path) -> None:
+    """CSV: one line per student, one column per exercise, then the total and maximum."""
+    with open(path, "w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["student", *exercises, "total", "max"])
+        for student, tasks in rows:
+            by_name = {t.exercise.name: t for t in tasks}
+            writer.writerow([student, *(points(by_name[n].score) for n in exercises),
+                             points(sum(t.score for t in tasks)),
+                             points(sum(t.max_score for t in tasks))])
