@@ -9,26 +9,9 @@
 // @param interpolation enum linear nearest | interpolation between the table's bins
 // @param gain float 0.01 100 1 log | multiplies the table (exposure of the data)
 
-// The host binds the table: texel (phi_d, theta_d, theta_h) holds f_r (RGB, 1/sr); negative
-// texels were not measured and count as 0.
+// The host binds the table: texel (phi_d, theta_d, theta_h) holds f_r (RGB, 1/sr), with
+// unmeasured (negative) values already replaced by 0.
 uniform highp sampler3D u_measured;
-
-// Rotation of v about the z axis (t > 0 turns x toward y) and about the y axis (z toward x).
-vec3 rotate_z(vec3 v, float t) {
-    float c = cos(t);
-    float s = sin(t);
-    return vec3(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
-}
-
-vec3 rotate_y(vec3 v, float t) {
-    float c = cos(t);
-    float s = sin(t);
-    return vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z);
-}
-
-vec3 table_texel(ivec3 bin) {
-    return max(texelFetch(u_measured, bin, 0).rgb, vec3(0.0));
-}
 
 vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     float NoL = dot(N, L);
@@ -38,8 +21,12 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     vec3 v = vec3(dot(V, X), dot(V, Y), NoV);
     vec3 h = normalize(l + v);
     float theta_h = acos(clamp(h.z, -1.0, 1.0));
-    float phi_h = length(h.xy) > 1e-7 ? atan(h.y, h.x) : 0.0;
-    vec3 d = rotate_y(rotate_z(l, -phi_h), -theta_h);
+    // d: l in a frame whose pole is h, i.e. l turned by -phi_h about N, then by -theta_h
+    // about the bitangent. The sines and cosines come from h itself (no trigonometry).
+    float sin_h = length(h.xy);
+    vec2 azimuth = sin_h > 1e-7 ? h.xy / sin_h : vec2(1.0, 0.0);  // (cos, sin) of phi_h
+    vec3 r = vec3(azimuth.x * l.x + azimuth.y * l.y, -azimuth.y * l.x + azimuth.x * l.y, l.z);
+    vec3 d = vec3(h.z * r.x - sin_h * r.z, r.y, sin_h * r.x + h.z * r.z);
     float theta_d = acos(clamp(d.z, -1.0, 1.0));
     float phi_d = length(d.xy) > 1e-7 ? atan(d.y, d.x) : 0.0;
     if (phi_d < 0.0) phi_d += PI;  // phi_d and phi_d + pi: L and V swapped
@@ -49,20 +36,9 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
                   sqrt(theta_h / (0.5 * PI)) * float(size.z));
     if (interpolation == INTERPOLATION_NEAREST) {
         ivec3 bin = clamp(ivec3(floor(c)), ivec3(0), size - 1);
-        return gain * table_texel(bin);
+        return gain * texelFetch(u_measured, bin, 0).rgb;
     }
-    // Trilinear between bin centres: clamped in theta, periodic in phi_d.
-    vec3 p = c - 0.5;
-    p.yz = clamp(p.yz, vec2(0.0), vec2(size.yz - 1));
-    vec3 base = floor(p);
-    vec3 t = p - base;
-    ivec3 i0 = ivec3(base);
-    ivec3 i1 = min(i0 + 1, size - 1);
-    i0.x = (i0.x + size.x) % size.x;
-    i1.x = (ivec3(base).x + 1 + size.x) % size.x;
-    vec3 c00 = mix(table_texel(ivec3(i0.x, i0.y, i0.z)), table_texel(ivec3(i1.x, i0.y, i0.z)), t.x);
-    vec3 c10 = mix(table_texel(ivec3(i0.x, i1.y, i0.z)), table_texel(ivec3(i1.x, i1.y, i0.z)), t.x);
-    vec3 c01 = mix(table_texel(ivec3(i0.x, i0.y, i1.z)), table_texel(ivec3(i1.x, i0.y, i1.z)), t.x);
-    vec3 c11 = mix(table_texel(ivec3(i0.x, i1.y, i1.z)), table_texel(ivec3(i1.x, i1.y, i1.z)), t.x);
-    return gain * mix(mix(c00, c10, t.y), mix(c01, c11, t.y), t.z);
+    // Trilinear between bin centres by the texture unit: texel centres sit at bin centres
+    // (i + 0.5), the host sets clamp-to-edge in theta and repeat in phi_d (it is periodic).
+    return gain * texture(u_measured, c / vec3(size)).rgb;
 }

@@ -159,7 +159,9 @@ def half_diff(L: np.ndarray, V: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
 
 def directions(theta_h, theta_d, phi_d) -> tuple[np.ndarray, np.ndarray]:
     """L and V (n, 3) for half/difference angles in radians (phi_h = 0)."""
-    theta_h, theta_d, phi_d = (np.asarray(a, dtype=np.float64).ravel() for a in (theta_h, theta_d, phi_d))
+    theta_h, theta_d, phi_d = (
+        np.asarray(a, dtype=np.float64).ravel() for a in (theta_h, theta_d, phi_d)
+    )
     d = np.stack(
         [np.sin(theta_d) * np.cos(phi_d), np.sin(theta_d) * np.sin(phi_d), np.cos(theta_d)], axis=-1
     )

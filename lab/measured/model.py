@@ -35,11 +35,15 @@ class MeasuredModel(Model):
         texture = self._textures.get(id(ctx))
         if texture is None:
             n_h, n_d, n_p = self.table.dims
-            texels = np.ascontiguousarray(self.table.rgb, dtype=np.float32)  # (h, d, p, rgb)
+            # Unmeasured (negative) entries become 0 here, so filtering never blends them in.
+            texels = np.ascontiguousarray(np.maximum(self.table.rgb, 0.0), dtype=np.float32)
             texture = ctx.texture3d((n_p, n_d, n_h), 3, texels.tobytes(), dtype="f4")
-            # The shader fetches texels itself (texelFetch), so hardware filtering is unused;
-            # float textures need not be filterable (WebGL2).
-            texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+            # The linear choice uses the texture unit's trilinear filter: phi_d is periodic,
+            # the theta axes clamp at their edges. The nearest choice fetches texels itself.
+            texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            texture.repeat_x = True
+            texture.repeat_y = False
+            texture.repeat_z = False
             self._textures[id(ctx)] = texture
         return texture
 

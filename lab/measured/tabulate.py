@@ -1,0 +1,34 @@
+"""Tabulate an analytic model in the MERL layout, on the GPU through its own shader."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from lab.measured.merl import MERL_DIMS, MerlTable, bin_grid
+from lab.models import Model, Value
+
+
+def tabulate(
+    model: Model | str,
+    values: dict[str, Value] | None = None,
+    dims: tuple[int, int, int] = MERL_DIMS,
+    noise: float = 0.0,
+    seed: int = 0,
+    renderer=None,
+) -> MerlTable:
+    """f_r of `model` at every bin centre; `noise` is a relative Gaussian error (sigma).
+
+    Noise multiplies each value by (1 + sigma * N(0, 1)), clipped at 0, as a stand-in for
+    a gonioreflectometer's error, which grows with the signal.
+    """
+    from lab.render import Renderer
+
+    if noise < 0 or not np.isfinite(noise):
+        raise ValueError(f"noise must be a finite sigma >= 0, not {noise}")
+    renderer = renderer or Renderer()
+    L, V = bin_grid(dims)
+    f = renderer.probe(model, values, L, V).astype(np.float64)
+    if noise > 0:
+        rng = np.random.default_rng(seed)
+        f = np.maximum(f * (1.0 + noise * rng.standard_normal(f.shape)), 0.0)
+    return MerlTable.from_rgb(f.reshape(*dims, 3))
