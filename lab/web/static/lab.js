@@ -228,6 +228,7 @@ class Panel {
     this.name = name;
     this.fillPicker();
     this.model = lab.models[name];
+    this.programs.clear(); // compiled for the previous model
     this.controls.replaceChildren();
     this.formula.replaceChildren();
     if (!this.model) {

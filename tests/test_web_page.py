@@ -1,0 +1,190 @@
+"""The web lab in headless Chromium (SwiftShader): every model renders, agrees with the
+desktop EGL render (llvmpipe), sliders follow the formula, errors name the model file."""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lab.models import load_model, model_names
+from lab.web.browser import chromium_path
+
+pytestmark = pytest.mark.skipif(
+    chromium_path() is None, reason="Chromium is not installed (apt-get install chromium)"
+)
+
+SIZE = 128
+LIGHT = (40.0, 20.0)
+# SwiftShader and llvmpipe are two independent rasterizers with their own pow/exp/atan.
+# Every sphere pixel must agree per channel within ABS_TOL + REL_TOL * |desktop|; the
+# largest relative difference measured over the library's defaults was about 1.2e-4.
+ABS_TOL = 1e-5
+REL_TOL = 1e-3
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    from lab.cli import main
+
+    outdir = tmp_path_factory.mktemp("site")
+    assert main(["web-export", str(outdir)]) == 0
+    return outdir
+
+
+@pytest.fixture(scope="module")
+def browser(site):
+    from lab.web.browser import chromium
+    from lab.web.site import serving
+
+    with serving(site) as url, chromium() as browser:
+        browser.base_url = url
+        yield browser
+
+
+class Page:
+    """A page of the lab with its console errors collected."""
+
+    def __init__(self, browser, hash_: str):
+        self.page = browser.new_page(viewport={"width": 1300, "height": 900})
+        self.errors: list[str] = []
+        self.page.on("console", lambda m: m.type == "error" and self.errors.append(m.text))
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+        self.page.goto(f"{browser.base_url}index.html#{hash_}")
+        self.page.evaluate("window.brdfLab.ready")
+
+    def js(self, expression: str, arg=None):
+        return self.page.evaluate(expression, arg)
+
+    def sphere(self, panel: int = 0) -> np.ndarray:
+        out = self.js("i => brdfLab.readSphere(i)", panel)
+        data = np.frombuffer(base64.b64decode(out["data"]), dtype=np.float32)
+        return data.reshape(out["height"], out["width"], 4)
+
+
+@pytest.fixture(scope="module")
+def lab_page(browser):
+    page = Page(browser, f"model=lambert&size={SIZE}&light={LIGHT[0]:g},{LIGHT[1]:g}")
+    yield page
+    page.page.close()
+
+
+def test_site_export_is_self_contained(site):
+    manifest = json.loads((site / "manifest.json").read_text())
+    assert manifest["models"] == model_names()
+    for relative in manifest["files"]:
+        assert (site / "shaders" / relative).is_file(), relative
+    assert {"index.html", "lab.js", "header.js", "assemble.js", "style.css"} <= {
+        p.name for p in site.iterdir()
+    }
+
+
+@pytest.mark.parametrize("name", model_names())
+def test_model_renders_like_desktop(lab_page, renderer, name, output_dir):
+    """Same model file, same defaults: the page's float sphere matches Renderer.sphere."""
+    assert lab_page.js("n => brdfLab.setModel(0, n)", name) >= 0
+    assert lab_page.js("brdfLab.errors(0)") == ""
+    assert lab_page.errors == []
+    web = lab_page.sphere()
+    desktop = renderer.sphere(load_model(name), {}, light=LIGHT, size=SIZE)
+    assert web.shape == desktop.shape
+    np.testing.assert_array_equal(web[..., 3], desktop[..., 3])  # same silhouette
+    on = desktop[..., 3] > 0
+    assert np.isfinite(web[on]).all()
+    assert web[on][:, :3].max() > 0.01, "the sphere is black"
+    close = np.abs(web[..., :3] - desktop[..., :3]) <= ABS_TOL + REL_TOL * np.abs(desktop[..., :3])
+    worst = float((np.abs(web - desktop)[..., :3] / (np.abs(desktop[..., :3]) + ABS_TOL))[on].max())
+    assert close[on].all(), f"{name}: {int((~close[on]).sum())} values differ; worst {worst:.2e}"
+    if name in ("phong", "cook_torrance", "mirror"):
+        lab_page.page.screenshot(path=output_dir / f"web_{name}.png")
+
+
+def test_slider_follows_the_formula(browser, output_dir):
+    """Phong lit from the eye: radiance = ks (2 c^2 - 1)^ke c with c = N.V (kd = 0)."""
+    page = Page(browser, f"model=phong&kd=0&ks=0.8&size={SIZE}&light=0,0")
+    try:
+        y, x = (np.mgrid[0:SIZE, 0:SIZE] + 0.5) / SIZE * 2 - 1
+        r2 = x**2 + y**2
+        c = np.sqrt(np.clip(1 - r2, 0, None))
+        renders = []
+        for position, expected_ke in ((200, 1000 ** 0.2), (700, 1000 ** 0.7)):
+            ke = page.js("p => brdfLab.moveSlider(0, 'ke', p)", position)
+            assert ke == pytest.approx(expected_ke, rel=1e-3)  # a log slider
+            assert page.js("brdfLab.values(0).ke") == ke
+            image = page.sphere()
+            expected = 0.8 * np.maximum(2 * c**2 - 1, 0) ** ke * c
+            on = r2 < 0.98  # away from the rim, where c is steep in the pixel position
+            np.testing.assert_allclose(image[..., 0][on], expected[on], rtol=2e-3, atol=2e-4)
+            renders.append(image)
+        # A larger exponent: a smaller, brighter-edged highlight (less light off-centre).
+        assert renders[1][..., 0].sum() < 0.5 * renders[0][..., 0].sum()
+        assert f"ke={ke:g}" in page.js("location.hash")
+        page.page.screenshot(path=output_dir / "web_slider.png")
+        assert page.errors == []
+    finally:
+        page.page.close()
+
+
+def test_presets_and_side_by_side(browser, output_dir):
+    page = Page(browser, "model=phong&ke=120&model=ward&alpha_x=0.3&model=cook_torrance"
+                         "&distribution=blinn&light=60,45&size=200")
+    try:
+        assert page.js("brdfLab.state.panels.length") == 3
+        assert page.js("brdfLab.values(0).ke") == 120
+        assert page.js("brdfLab.values(1).alpha_x") == 0.3
+        assert page.js("brdfLab.values(2).distribution") == "blinn"
+        assert page.js("brdfLab.state.light") == {"theta": 60, "phi": 45}
+        lobe = np.array(page.js("brdfLab.readLobe(0)")).reshape(181, 4)
+        # Phong's lobe peaks at the mirror direction theta_o = theta_i = 60 deg.
+        assert int(np.argmax(lobe[:, 0])) - 90 == 60
+        page.page.screenshot(path=output_dir / "web_side_by_side.png", full_page=True)
+        assert page.errors == []
+    finally:
+        page.page.close()
+
+
+def test_bad_preset_is_reported_on_the_page(browser):
+    page = Page(browser, "model=nosuch&model=phong&ke=5000&colour=1")
+    try:
+        notes = page.js("brdfLab.notes()")
+        assert any("unknown model nosuch" in n for n in notes)
+        assert any("ke must be a number in [1, 1000]" in n for n in notes)
+        assert any("has no parameter colour" in n for n in notes)
+        assert page.js("brdfLab.values(0).ke") == 50  # the default stays
+        assert page.errors == []
+    finally:
+        page.page.close()
+
+
+def test_drag_moves_the_light(lab_page):
+    box = lab_page.page.locator("canvas.sphere").first.bounding_box()
+    # Half way to the right rim: N = (0.5, 0, 0.866) -> theta 30, phi 0.
+    lab_page.page.mouse.click(box["x"] + box["width"] * 0.75, box["y"] + box["height"] * 0.5)
+    light = lab_page.js("brdfLab.state.light")
+    assert light["theta"] == pytest.approx(30, abs=1.5) and light["phi"] == pytest.approx(0, abs=1)
+    lab_page.js(f"brdfLab.setLight({LIGHT[0]}, {LIGHT[1]})")
+
+
+def test_errors_name_the_model_file_and_line(lab_page):
+    """A compile error points at the user's file and its own lines; so does a header error."""
+    from lab.models import ModelError, parse_model
+
+    fixtures = Path(__file__).parent / "fixtures" / "headers"
+    code = (fixtures / "err_compile.glsl").read_text()
+    count = lab_page.js("brdfLab.state.panels.length")
+    error = lab_page.js("([l, c]) => brdfLab.loadModel(l, c)", ["my_model.glsl", code])
+    assert "does not compile" in error
+    lines = {int(m) for m in re.findall(r"my_model\.glsl:(\d+):", error)}
+    assert lines and lines <= {5, 6}, error  # `float x = 1;` and `undefined_name`
+    header = (fixtures / "err_float_default.glsl").read_text()
+    error = lab_page.js("([l, c]) => brdfLab.loadModel(l, c)", ["bad.glsl", header])
+    with pytest.raises(ModelError) as python_error:
+        parse_model(header, "bad.glsl")
+    assert error == str(python_error.value)  # the same words as the desktop lab
+    assert lab_page.errors == []
+    lab_page.js(f"() => {{ while (brdfLab.state.panels.length > {count}) "
+                "brdfLab.state.panels.pop().root.remove(); }")
