@@ -29,7 +29,9 @@ def parse_pair(text: str, what: str) -> tuple[float, float]:
     try:
         first, second = (float(x) for x in text.split(","))
     except ValueError:
-        raise UsageError(f"{what} {text!r} is malformed: write THETA,PHI in degrees, e.g. 30,0") from None
+        raise UsageError(
+            f"{what} {text!r} is malformed: write THETA,PHI in degrees, e.g. 30,0"
+        ) from None
     return first, second
 
 
@@ -127,7 +129,9 @@ def read_pairs(path: str):
             try:
                 rows.append([float(row[c]) for c in columns])
             except (ValueError, IndexError):
-                raise UsageError(f"{path}:{number}: expected four numbers, got {','.join(row)!r}") from None
+                raise UsageError(
+                    f"{path}:{number}: expected four numbers, got {','.join(row)!r}"
+                ) from None
     angles = np.array(rows, dtype=np.float64).reshape(-1, 4)
     if not np.isfinite(angles).all():
         bad = int(np.argwhere(~np.isfinite(angles))[0][0]) + 2

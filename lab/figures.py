@@ -10,8 +10,14 @@ from lab.models import load_model, model_names
 from lab.render import Renderer
 
 
-def _sphere(renderer: Renderer, out: Path, model: str, values: dict, light=(45.0, 0.0),
-            exposure: float = 0.0) -> Path:
+def _sphere(
+    renderer: Renderer,
+    out: Path,
+    model: str,
+    values: dict,
+    light=(45.0, 0.0),
+    exposure: float = 0.0,
+) -> Path:
     plots.save_image(renderer.sphere(model, values, light, size=384), out, exposure)
     return out
 
@@ -24,12 +30,24 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     paths = []
     # Phong exponent: the highlight shrinks as ke grows (lecture: k = 4, 50, 120).
     for ke in (4, 50, 120):
-        paths.append(_sphere(renderer, outdir / f"phong_ke_{ke}.png", "phong",
-                             {"kd": (0.25, 0.05, 0.05), "ks": (0.6,) * 3, "ke": float(ke)}))
+        paths.append(
+            _sphere(
+                renderer,
+                outdir / f"phong_ke_{ke}.png",
+                "phong",
+                {"kd": (0.25, 0.05, 0.05), "ks": (0.6,) * 3, "ke": float(ke)},
+            )
+        )
     # Beckmann roughness: m = 0.2 (shiny) and 0.6 (rough).
     for m in (0.2, 0.6):
-        paths.append(_sphere(renderer, outdir / f"beckmann_m_{m}.png", "cook_torrance",
-                             {"kd": (0.05, 0.1, 0.3), "m": m, "f0": (0.9,) * 3}))
+        paths.append(
+            _sphere(
+                renderer,
+                outdir / f"beckmann_m_{m}.png",
+                "cook_torrance",
+                {"kd": (0.05, 0.1, 0.3), "m": m, "f0": (0.9,) * 3},
+            )
+        )
     # Off-specular peak: at grazing incidence Cook-Torrance peaks beyond the mirror angle.
     fig, ax = plots._figure(polar=True)
     theta_i = 75.0

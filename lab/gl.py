@@ -33,4 +33,5 @@ def get_context(window: bool = False) -> moderngl.Context:
 
 def describe(ctx: moderngl.Context) -> str:
     """Renderer and version, e.g. 'llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5'."""
-    return f"{ctx.info['GL_RENDERER']}, OpenGL {ctx.version_code // 100}.{ctx.version_code % 100 // 10}"
+    major, minor = divmod(ctx.version_code // 10, 10)
+    return f"{ctx.info['GL_RENDERER']}, OpenGL {major}.{minor}"

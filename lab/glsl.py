@@ -126,10 +126,20 @@ def _add_include(source: Source, relative: str, seen: set[str], model: Model) ->
     if relative in seen:
         return
     if not path.is_file() or SHADER_DIR.resolve() not in path.parents:
-        line = next((n for n, text in enumerate(model.code.splitlines(), 1)
-                     if "@include" in text and relative in text), None)
-        raise ModelError(f"@include {relative}: no such file under shaders/ "
-                         "(see shaders/terms for the shared terms)", label_of(model.path), line)
+        line = next(
+            (
+                n
+                for n, text in enumerate(model.code.splitlines(), 1)
+                if "@include" in text and relative in text
+            ),
+            None,
+        )
+        raise ModelError(
+            f"@include {relative}: no such file under shaders/ "
+            "(see shaders/terms for the shared terms)",
+            label_of(model.path),
+            line,
+        )
     seen.add(relative)
     source.add(path.read_text(encoding="utf-8"), label_of(path))
 

@@ -26,7 +26,11 @@ class ModelError(ValueError):
         self.file = str(file) if file is not None else None
         self.line = line
         self.message = message
-        where = f"{self.file}:{line}: " if self.file and line else (f"{self.file}: " if self.file else "")
+        where = (
+            f"{self.file}:{line}: "
+            if self.file and line
+            else (f"{self.file}: " if self.file else "")
+        )
         super().__init__(where + message)
 
 
@@ -49,7 +53,9 @@ class Param:
         text = text.strip()
         if self.kind == "enum":
             if text not in self.choices:
-                raise ModelError(f"{self.name} must be one of {', '.join(self.choices)}, not {text!r}")
+                raise ModelError(
+                    f"{self.name} must be one of {', '.join(self.choices)}, not {text!r}"
+                )
             return text
         if self.kind == "bool":
             lowered = text.lower()
@@ -67,7 +73,9 @@ class Param:
             if len(numbers) == 1:
                 numbers *= 3
             if len(numbers) != 3:
-                raise ModelError(f"{self.name} is a color: give r,g,b or one grey value, not {text!r}")
+                raise ModelError(
+                    f"{self.name} is a color: give r,g,b or one grey value, not {text!r}"
+                )
             return self.check(tuple(numbers))
         if len(numbers) != 1:
             raise ModelError(f"{self.name} is a single number, not {text!r}")
@@ -81,7 +89,9 @@ class Param:
                 if 0 <= index < len(self.choices):
                     return self.choices[index]
             if value not in self.choices:
-                raise ModelError(f"{self.name} must be one of {', '.join(self.choices)}, not {value!r}")
+                raise ModelError(
+                    f"{self.name} must be one of {', '.join(self.choices)}, not {value!r}"
+                )
             return value
         if self.kind == "bool":
             return bool(value)
@@ -180,19 +190,27 @@ def parse_param(text: str, path: Path, line: int) -> Param:
     if not IDENTIFIER.match(name):
         raise ModelError(f"parameter name {name!r} is not a GLSL identifier", path, line)
     if kind not in PARAM_TYPES:
-        raise ModelError(f"unknown parameter type {kind!r}: use one of {', '.join(PARAM_TYPES)}", path, line)
+        raise ModelError(
+            f"unknown parameter type {kind!r}: use one of {', '.join(PARAM_TYPES)}", path, line
+        )
     doc = doc.strip()
     if kind == "float":
         if len(args) not in (3, 4):
-            raise ModelError(f"float parameter {name}: write 'MIN MAX DEFAULT [linear|log]'", path, line)
+            raise ModelError(
+                f"float parameter {name}: write 'MIN MAX DEFAULT [linear|log]'", path, line
+            )
         low, high, default = (_number(a, f"{name} range/default", path, line) for a in args[:3])
         scale = args[3] if len(args) == 4 else "linear"
         if scale not in ("linear", "log"):
-            raise ModelError(f"{name}: slider scale must be linear or log, not {scale!r}", path, line)
+            raise ModelError(
+                f"{name}: slider scale must be linear or log, not {scale!r}", path, line
+            )
         if not low < high:
             raise ModelError(f"{name}: MIN ({low:g}) must be below MAX ({high:g})", path, line)
         if not low <= default <= high:
-            raise ModelError(f"{name}: default {default:g} is outside [{low:g}, {high:g}]", path, line)
+            raise ModelError(
+                f"{name}: default {default:g} is outside [{low:g}, {high:g}]", path, line
+            )
         if scale == "log" and low <= 0:
             raise ModelError(f"{name}: a log slider needs MIN > 0", path, line)
         return Param(name, kind, default, doc, low, high, scale, line=line)
@@ -208,7 +226,9 @@ def parse_param(text: str, path: Path, line: int) -> Param:
             raise ModelError(f"bool parameter {name}: write 0 or 1 as the default", path, line)
         return Param(name, kind, args[0] == "1", doc, line=line)
     if not args:
-        raise ModelError(f"enum parameter {name}: list its choices (the first is the default)", path, line)
+        raise ModelError(
+            f"enum parameter {name}: list its choices (the first is the default)", path, line
+        )
     for choice in args:
         if not IDENTIFIER.match(choice):
             raise ModelError(f"enum choice {choice!r} of {name} is not an identifier", path, line)

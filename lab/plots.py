@@ -65,8 +65,11 @@ def style_polar(ax, theta_i: float, what: str) -> None:
     ax.set_thetamin(-90)
     ax.set_thetamax(90)
     top = ax.get_ylim()[1]
-    for angle, name, style in ((0.0, "normal", ":"), (-theta_i, "incident", "--"),
-                               (theta_i, "mirror", "-.")):
+    for angle, name, style in (
+        (0.0, "normal", ":"),
+        (-theta_i, "incident", "--"),
+        (theta_i, "mirror", "-."),
+    ):
         ax.plot([np.radians(angle)] * 2, [0, top], style, color="grey", lw=1)
         ax.text(np.radians(angle), top * 1.05, name, ha="center", fontsize=8, color="grey")
     ax.set_ylim(0, top)
@@ -74,8 +77,16 @@ def style_polar(ax, theta_i: float, what: str) -> None:
     ax.legend(loc="lower left", fontsize=8, bbox_to_anchor=(-0.1, -0.15))
 
 
-def save_view(renderer, view: str, model: Model, values, theta: float, phi: float,
-              out: str | Path, size: int = 512) -> None:
+def save_view(
+    renderer,
+    view: str,
+    model: Model,
+    values,
+    theta: float,
+    phi: float,
+    out: str | Path,
+    size: int = 512,
+) -> None:
     """Render a plot view (polar, lobe3d, slice, albedo) of one model to a readable PNG."""
     import matplotlib.pyplot as plt
 
@@ -88,18 +99,27 @@ def save_view(renderer, view: str, model: Model, values, theta: float, phi: floa
         theta_o, phi_o, f = renderer.lobe3d(model, values, theta, phi)
         r = luminance(f.astype(np.float64))
         t, p = np.meshgrid(np.radians(theta_o), np.radians(phi_o), indexing="ij")
-        ax.plot_surface(r * np.sin(t) * np.cos(p), r * np.sin(t) * np.sin(p), r * np.cos(t),
-                        cmap="viridis", linewidth=0)
+        ax.plot_surface(
+            r * np.sin(t) * np.cos(p),
+            r * np.sin(t) * np.sin(p),
+            r * np.cos(t),
+            cmap="viridis",
+            linewidth=0,
+        )
         ax.set_xlabel("x (tangent)")
         ax.set_ylabel("y")
         ax.set_zlabel("z (normal)")
         ax.set_title(f"{model.name}: f_r lobe for θi = {theta:g}°, φi = {phi:g}°", fontsize=10)
     elif view == "slice":
         fig, ax = _figure()
-        image = luminance(renderer.slice(model, values, phi_d=phi if phi else 90.0,
-                                         size=min(size, 512)).astype(np.float64))
-        shown = ax.imshow(np.log10(np.maximum(image, 1e-4)), extent=(0, 90, 0, 90),
-                          cmap="magma", aspect="equal")
+        image = luminance(
+            renderer.slice(model, values, phi_d=phi if phi else 90.0, size=min(size, 512)).astype(
+                np.float64
+            )
+        )
+        shown = ax.imshow(
+            np.log10(np.maximum(image, 1e-4)), extent=(0, 90, 0, 90), cmap="magma", aspect="equal"
+        )
         fig.colorbar(shown, label="log10 f_r")
         ax.set_xlabel("θh (degrees)")
         ax.set_ylabel("θd (degrees)")
@@ -113,8 +133,15 @@ def save_view(renderer, view: str, model: Model, values, theta: float, phi: floa
         ax.axhline(1.0, color="black", lw=1, ls="--", label="albedo = 1")
         gain = a.max(axis=1) > 1.0
         if gain.any():
-            ax.fill_between(thetas, 1.0, a.max(axis=1), where=gain, color="red", alpha=0.2,
-                            label="energy gain (not physical)")
+            ax.fill_between(
+                thetas,
+                1.0,
+                a.max(axis=1),
+                where=gain,
+                color="red",
+                alpha=0.2,
+                label="energy gain (not physical)",
+            )
         ax.set_xlabel("θi (degrees)")
         ax.set_ylabel("directional albedo")
         ax.set_ylim(0, max(1.1, float(a.max()) * 1.05))

@@ -222,10 +222,15 @@ class Renderer:
         return self.albedo(model, values, [theta_i], phi_i, samples=1, wedges=1, only_delta=True)[0]
 
     def lobe3d(
-        self, model: Model | str, values, theta_i: float, phi_i: float = 0.0,
-        n_theta: int = 46, n_phi: int = 121,
+        self,
+        model: Model | str,
+        values,
+        theta_i: float,
+        phi_i: float = 0.0,
+        n_theta: int = 46,
+        n_phi: int = 121,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """f_r on a hemisphere grid: theta_o (n_theta,), phi_o (n_phi,), values (n_theta, n_phi, 3)."""
+        """f_r on a hemisphere grid: theta_o, phi_o (degrees) and values (n_theta, n_phi, 3)."""
         theta_o = np.linspace(0.0, 90.0, n_theta)
         phi_o = np.linspace(0.0, 360.0, n_phi)
         tt, pp = np.meshgrid(theta_o, phi_o, indexing="ij")
@@ -242,17 +247,26 @@ class Renderer:
         return self._read(fbo)[::-1, :, :3].copy()
 
     def albedo(
-        self, model: Model | str, values, thetas_deg, phi_i: float = 0.0,
-        samples: int = 256, wedges: int = 64, only_delta: bool = False,
+        self,
+        model: Model | str,
+        values,
+        thetas_deg,
+        phi_i: float = 0.0,
+        samples: int = 256,
+        wedges: int = 64,
+        only_delta: bool = False,
     ) -> np.ndarray:
         """Directional albedo (n, 3) at theta_i (degrees), one pass when evenly spaced."""
         model = as_model(model)
         thetas = np.asarray(thetas_deg, dtype=np.float64).ravel()
         step = float(thetas[1] - thetas[0]) if len(thetas) > 1 else 0.0
         if len(thetas) > 2 and not np.allclose(np.diff(thetas), step):
-            return np.concatenate([
-                self.albedo(model, values, [t], phi_i, samples, wedges, only_delta) for t in thetas
-            ])
+            return np.concatenate(
+                [
+                    self.albedo(model, values, [t], phi_i, samples, wedges, only_delta)
+                    for t in thetas
+                ]
+            )
         uniforms = {
             "u_theta0": math.radians(thetas[0]),
             "u_theta_step": math.radians(step),

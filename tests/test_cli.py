@@ -40,13 +40,34 @@ def test_models_lists_parameters_and_files(capsys):
 
 def test_eval_gpu_and_cpu_agree(tmp_path):
     rng = np.random.default_rng(5)
-    rows = np.column_stack([rng.uniform(0, 80, 50), rng.uniform(0, 360, 50),
-                            rng.uniform(0, 80, 50), rng.uniform(0, 360, 50)])
+    rows = np.column_stack(
+        [
+            rng.uniform(0, 80, 50),
+            rng.uniform(0, 360, 50),
+            rng.uniform(0, 80, 50),
+            rng.uniform(0, 360, 50),
+        ]
+    )
     pairs = write_pairs(tmp_path / "pairs.csv", rows.round(6))
     settings = ["--set", "alpha=0.3", "--set", "kd=0.2,0.3,0.4"]
-    assert main(["eval", "ggx", *settings, "--in", str(pairs), "--out", str(tmp_path / "g.csv")]) == 0
-    assert main(["eval", "ggx", *settings, "--in", str(pairs), "--out", str(tmp_path / "c.csv"),
-                 "--cpu"]) == 0
+    assert (
+        main(["eval", "ggx", *settings, "--in", str(pairs), "--out", str(tmp_path / "g.csv")]) == 0
+    )
+    assert (
+        main(
+            [
+                "eval",
+                "ggx",
+                *settings,
+                "--in",
+                str(pairs),
+                "--out",
+                str(tmp_path / "c.csv"),
+                "--cpu",
+            ]
+        )
+        == 0
+    )
     gpu, cpu = read_values(tmp_path / "g.csv"), read_values(tmp_path / "c.csv")
     assert gpu.shape == (50, 3)
     expected = reference.brdf_angles("ggx", {"alpha": 0.3, "kd": (0.2, 0.3, 0.4)}, rows.round(6))
@@ -64,8 +85,23 @@ def test_eval_of_mirror_says_it_is_a_delta(tmp_path, capsys):
 @pytest.mark.parametrize("view", ["sphere", "polar", "lobe3d", "slice", "albedo"])
 def test_render_writes_a_png(tmp_path, view):
     out = tmp_path / f"{view}.png"
-    assert main(["render", "cook_torrance", "--view", view, "--light", "60,0", "--size", "128",
-                 "-o", str(out)]) == 0
+    assert (
+        main(
+            [
+                "render",
+                "cook_torrance",
+                "--view",
+                view,
+                "--light",
+                "60,0",
+                "--size",
+                "128",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
     image = np.asarray(Image.open(out).convert("RGB"), dtype=np.float64)
     assert image.std() > 5  # something was drawn, not a blank canvas
 
@@ -74,8 +110,23 @@ def test_render_sphere_pixels_follow_the_exponent(tmp_path):
     sizes = []
     for ke in ("4", "120"):
         out = tmp_path / f"p{ke}.png"
-        assert main(["render", "phong", "--set", f"ke={ke}", "--set", "kd=0", "--size", "128",
-                     "-o", str(out)]) == 0
+        assert (
+            main(
+                [
+                    "render",
+                    "phong",
+                    "--set",
+                    f"ke={ke}",
+                    "--set",
+                    "kd=0",
+                    "--size",
+                    "128",
+                    "-o",
+                    str(out),
+                ]
+            )
+            == 0
+        )
         lum = np.asarray(Image.open(out).convert("L"), dtype=np.float64)
         sizes.append((lum > 0.5 * lum.max()).sum())
     assert sizes[0] > 5 * sizes[1]  # a larger exponent makes a smaller highlight
@@ -84,9 +135,16 @@ def test_render_sphere_pixels_follow_the_exponent(tmp_path):
 def test_figures_command_writes_the_lecture_figures(tmp_path):
     assert main(["figures", str(tmp_path)]) == 0
     names = {p.name for p in tmp_path.glob("*.png")}
-    assert {"phong_ke_4.png", "phong_ke_50.png", "phong_ke_120.png", "beckmann_m_0.2.png",
-            "beckmann_m_0.6.png", "off_specular_peak.png", "full_lambert.png",
-            "full_lommel_seeliger.png"} <= names
+    assert {
+        "phong_ke_4.png",
+        "phong_ke_50.png",
+        "phong_ke_120.png",
+        "beckmann_m_0.2.png",
+        "beckmann_m_0.6.png",
+        "off_specular_peak.png",
+        "full_lambert.png",
+        "full_lommel_seeliger.png",
+    } <= names
     # The full moon is a flat disc: Lommel-Seeliger lit from the eye has a uniform radiance.
     moon = np.asarray(Image.open(tmp_path / "full_lommel_seeliger.png").convert("L"), float)
     sun = np.asarray(Image.open(tmp_path / "full_lambert.png").convert("L"), float)
@@ -109,7 +167,10 @@ BAD_INPUTS = [
     (["eval", "phong", "--in", "{tmp}/cols.csv"], "cols.csv:1: missing column(s) phi_o"),
     (["eval", "phong", "--in", "{tmp}/text.csv"], "text.csv:3: expected four numbers"),
     (["render", "{tmp}/broken.glsl", "-o", "{tmp}/x.png"], "broken.glsl:6:"),
-    (["render", "{tmp}/versioned.glsl", "-o", "{tmp}/x.png"], "versioned.glsl:2: remove the '#version'"),
+    (
+        ["render", "{tmp}/versioned.glsl", "-o", "{tmp}/x.png"],
+        "versioned.glsl:2: remove the '#version'",
+    ),
 ]
 
 
@@ -120,10 +181,12 @@ def test_bad_input_gets_one_clear_line(tmp_path, args, message):
     (tmp_path / "broken.glsl").write_text(
         "// @model broken\n// @param kd color 0.5 0.5 0.5 | diffuse\n"
         "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
-        "    float NoL = dot(N, L);\n    vec3 c = kd * NoL;\n    return undefined_thing * c;\n}\n")
+        "    float NoL = dot(N, L);\n    vec3 c = kd * NoL;\n    return undefined_thing * c;\n}\n"
+    )
     (tmp_path / "versioned.glsl").write_text(
         "// @model versioned\n#version 330 core\n"
-        "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n")
+        "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
+    )
     result = run_cli(*[a.format(tmp=tmp_path) for a in args])
     assert result.returncode == 2, result.stderr
     assert "Traceback" not in result.stderr

@@ -38,12 +38,16 @@ def test_compiles_as_glsl_es_300(tmp_path, name):
     model = load_model(name)
     for view in ("sphere", "probe"):
         for enums in enum_variants(model):
-            source = glsl.assemble_fragment(model, view, "300es", "const int LIGHT_COUNT = 2;", enums)
+            source = glsl.assemble_fragment(
+                model, view, "300es", "const int LIGHT_COUNT = 2;", enums
+            )
             path = tmp_path / f"{name}_{view}.frag"
             path.write_text(source.text)
             result = subprocess.run([validator, str(path)], capture_output=True, text=True)
             assert result.returncode == 0, (name, view, enums, result.stdout)
 
+
+EMPTY_BRDF = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
 
 BROKEN = """// @model broken
 // @title a model with a typo on line 7
@@ -74,7 +78,7 @@ def test_error_log_formats_of_other_drivers_are_mapped():
     line = next(i for i, (f, n) in enumerate(source.origins, 1) if f == "broken.glsl" and n == 7)
     logs = {
         "mesa": f"0:{line}(5): error: syntax error, unexpected '}}'",
-        "nvidia": f"0({line}) : error C1008: undefined variable \"x\"",
+        "nvidia": f'0({line}) : error C1008: undefined variable "x"',
         "angle": f"ERROR: 0:{line}: '}}' : syntax error",
     }
     for driver, log in logs.items():
@@ -82,10 +86,15 @@ def test_error_log_formats_of_other_drivers_are_mapped():
         assert [(e.file, e.line) for e in errors] == [("broken.glsl", 7)], driver
 
 
-@pytest.mark.parametrize("directive", ["#version 330 core", "#extension GL_OES_foo : enable",
-                                       '#include "x.glsl"'])
+@pytest.mark.parametrize(
+    "directive", ["#version 330 core", "#extension GL_OES_foo : enable", '#include "x.glsl"']
+)
 def test_host_owned_directives_are_rejected_with_line(directive):
-    code = "// @model m\n\n" + directive + "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
+    code = (
+        "// @model m\n\n"
+        + directive
+        + "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
+    )
     model = parse_model(code, "m.glsl")
     with pytest.raises(ModelError) as info:
         glsl.assemble_fragment(model, "probe")
@@ -93,7 +102,7 @@ def test_host_owned_directives_are_rejected_with_line(directive):
 
 
 def test_missing_include_is_reported():
-    code = "// @model m\n// @include terms/nope.glsl\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
+    code = "// @model m\n// @include terms/nope.glsl\n" + EMPTY_BRDF
     with pytest.raises(ModelError, match="m.glsl:2: @include terms/nope.glsl"):
         glsl.assemble_fragment(parse_model(code, "m.glsl"), "probe")
 

@@ -58,7 +58,11 @@ def test_header_details():
     ],
 )
 def test_bad_header_lines_name_file_and_line(line, fragment):
-    code = "// @model broken\n// @title t\n" + line + "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
+    code = (
+        "// @model broken\n// @title t\n"
+        + line
+        + "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }\n"
+    )
     with pytest.raises(ModelError) as info:
         parse_model(code, "broken.glsl")
     assert info.value.line == 3
@@ -67,7 +71,9 @@ def test_bad_header_lines_name_file_and_line(line, fragment):
 
 
 def test_header_ends_at_first_code_line():
-    code = "// @param a float 0 1 0.5 | first\nfloat x = 1.0;\n// @param b float 0 1 0.5 | ignored\n"
+    code = (
+        "// @param a float 0 1 0.5 | first\nfloat x = 1.0;\n// @param b float 0 1 0.5 | ignored\n"
+    )
     assert list(parse_model(code, "m.glsl").params) == ["a"]
 
 

@@ -17,8 +17,10 @@ def pixel_to_normal(row: float, col: float, size: int = SIZE) -> np.ndarray:
     return np.array([x, y, np.sqrt(max(0.0, 1 - x * x - y * y))])
 
 
-@pytest.mark.parametrize("name, values", [("phong", {"ke": 200.0}), ("blinn_phong", {"ke": 800.0}),
-                                          ("ggx", {"alpha": 0.05})])
+@pytest.mark.parametrize(
+    "name, values",
+    [("phong", {"ke": 200.0}), ("blinn_phong", {"ke": 800.0}), ("ggx", {"alpha": 0.05})],
+)
 @pytest.mark.parametrize("light", [(40.0, 0.0), (60.0, 135.0), (20.0, 270.0)])
 def test_highlight_sits_where_the_mirror_direction_says(renderer, name, values, light):
     """The brightest pixel's normal bisects the light and the view direction."""
@@ -39,8 +41,9 @@ def test_sphere_background_and_cosine(renderer):
     assert centre == pytest.approx(0.6 / np.pi, rel=1e-3)
     normal = pixel_to_normal(SIZE // 2, SIZE - 20)
     assert image[SIZE // 2, SIZE - 20, 0] == pytest.approx(0.6 / np.pi * normal[2], rel=1e-2)
-    flat = renderer.sphere("lambert", {"albedo": (0.6, 0.6, 0.6)}, (0.0, 0.0), size=SIZE,
-                           multiply_cos=False)
+    flat = renderer.sphere(
+        "lambert", {"albedo": (0.6, 0.6, 0.6)}, (0.0, 0.0), size=SIZE, multiply_cos=False
+    )
     assert flat[SIZE // 2, SIZE - 20, 0] == pytest.approx(0.6 / np.pi, rel=1e-3)
 
 
@@ -114,6 +117,7 @@ def test_lobe3d_matches_probe(renderer):
     theta_o, phi_o, f = renderer.lobe3d("ward", {"alpha_x": 0.1, "alpha_y": 0.3}, 30.0, 0.0)
     assert f.shape == (len(theta_o), len(phi_o), 3)
     i, j = 20, 40
-    direct = renderer.eval_angles("ward", {"alpha_x": 0.1, "alpha_y": 0.3},
-                                  [[30.0, 0.0, theta_o[i], phi_o[j]]])
+    direct = renderer.eval_angles(
+        "ward", {"alpha_x": 0.1, "alpha_y": 0.3}, [[30.0, 0.0, theta_o[i], phi_o[j]]]
+    )
     np.testing.assert_allclose(f[i, j], direct[0], rtol=1e-5)
