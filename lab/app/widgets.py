@@ -1,0 +1,358 @@
+"""Controls generated from the shader headers: the models list and the parameter panel."""
+
+from __future__ import annotations
+
+import math
+
+from PyQt6.QtCore import Qt, pyqtSignal
+from PyQt6.QtGui import QColor, QIcon, QPixmap
+from PyQt6.QtWidgets import (
+    QCheckBox,
+    QColorDialog,
+    QComboBox,
+    QFormLayout,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QListWidget,
+    QListWidgetItem,
+    QPushButton,
+    QSlider,
+    QToolButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from lab.app.state import LabState, ModelState, Settings
+from lab.models import ModelError, Param, model_names
+
+STEPS = 1000  # slider resolution
+
+
+def slider_position(param: Param, value: float) -> int:
+    """Where `value` sits on the slider (linear or log, as the header says)."""
+    low, high = param.minimum, param.maximum
+    if param.scale == "log":
+        t = (math.log(value) - math.log(low)) / (math.log(high) - math.log(low))
+    else:
+        t = (value - low) / (high - low)
+    return round(min(max(t, 0.0), 1.0) * STEPS)
+
+
+def slider_value(param: Param, position: int) -> float:
+    t = position / STEPS
+    low, high = param.minimum, param.maximum
+    if param.scale == "log":
+        return math.exp(math.log(low) + t * (math.log(high) - math.log(low)))
+    return low + t * (high - low)
+
+
+def format_number(value: float) -> str:
+    return f"{value:.4g}"
+
+
+def color_hex(rgb) -> str:
+    return QColor.fromRgbF(*(min(max(c, 0.0), 1.0) for c in rgb)).name()
+
+
+class ParamControl(QWidget):
+    """One parameter's control row; writes through the ModelState, reads on refresh()."""
+
+    def __init__(self, state: ModelState, param: Param):
+        super().__init__()
+        self.state = state
+        self.param = param
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        self.slider = self.text = self.check = self.combo = self.swatch = None
+        if param.kind == "float":
+            self.slider = QSlider(Qt.Orientation.Horizontal)
+            self.slider.setRange(0, STEPS)
+            self.slider.valueChanged.connect(self._from_slider)
+            self.text = QLineEdit()
+            self.text.setFixedWidth(70)
+            self.text.editingFinished.connect(self._from_text)
+            layout.addWidget(self.slider, 1)
+            layout.addWidget(self.text)
+        elif param.kind == "color":
+            self.swatch = QPushButton()
+            self.swatch.setFixedWidth(36)
+            self.swatch.clicked.connect(self._pick_color)
+            self.text = QLineEdit()
+            self.text.editingFinished.connect(self._from_text)
+            layout.addWidget(self.swatch)
+            layout.addWidget(self.text, 1)
+        elif param.kind == "bool":
+            self.check = QCheckBox()
+            self.check.toggled.connect(lambda on: self._set(on))
+            layout.addWidget(self.check, 1)
+        else:
+            self.combo = QComboBox()
+            self.combo.addItems(param.choices)
+            self.combo.currentTextChanged.connect(lambda text: self._set(text))
+            layout.addWidget(self.combo, 1)
+        reset = QToolButton()
+        reset.setText("↺")
+        reset.setToolTip(f"reset {param.name} to its default")
+        reset.clicked.connect(lambda: self.state.reset(param.name))
+        layout.addWidget(reset)
+        self.setToolTip(param.doc)
+        self.refresh()
+
+    def _set(self, value) -> None:
+        try:
+            self.state.set_value(self.param.name, value)
+        except ModelError as err:
+            self.window().statusBar().showMessage(str(err), 5000) if hasattr(
+                self.window(), "statusBar") else None
+            self.refresh()
+
+    def _from_slider(self, position: int) -> None:
+        self._set(slider_value(self.param, position))
+
+    def _from_text(self) -> None:
+        try:
+            value = self.param.parse(self.text.text())
+        except ModelError as err:
+            self.text.setToolTip(str(err))
+            self.refresh()
+            return
+        self._set(value)
+
+    def _pick_color(self) -> None:
+        color = QColorDialog.getColor(QColor(color_hex(self.state.values[self.param.name])), self)
+        if color.isValid():
+            self._set((color.redF(), color.greenF(), color.blueF()))
+
+    def refresh(self) -> None:
+        """Show the state's value without echoing it back."""
+        value = self.state.values[self.param.name]
+        for widget in (self.slider, self.text, self.check, self.combo):
+            if widget is not None:
+                widget.blockSignals(True)
+        if self.param.kind == "float":
+            if slider_value(self.param, self.slider.value()) != value:
+                self.slider.setValue(slider_position(self.param, value))
+            self.text.setText(format_number(value))
+        elif self.param.kind == "color":
+            self.swatch.setStyleSheet(f"background: {color_hex(value)}")
+            self.text.setText(", ".join(format_number(c) for c in value))
+        elif self.param.kind == "bool":
+            self.check.setChecked(bool(value))
+        else:
+            self.combo.setCurrentText(value)
+        for widget in (self.slider, self.text, self.check, self.combo):
+            if widget is not None:
+                widget.blockSignals(False)
+
+
+class ParamPanel(QWidget):
+    """The selected model's parameters, built from its header."""
+
+    def __init__(self, lab: LabState):
+        super().__init__()
+        self.lab = lab
+        self.controls: dict[str, ParamControl] = {}
+        self.current: ModelState | None = None
+        self.layout_ = QVBoxLayout(self)
+        self.title = QLabel()
+        self.title.setWordWrap(True)
+        self.layout_.addWidget(self.title)
+        self.form_host = QWidget()
+        self.layout_.addWidget(self.form_host)
+        self.layout_.addStretch(1)
+        lab.selection_changed.connect(self.rebuild)
+        self.rebuild()
+
+    def rebuild(self) -> None:
+        if self.current is not None:
+            try:
+                self.current.changed.disconnect(self.refresh)
+            except TypeError:
+                pass
+        self.current = self.lab.selected
+        self.form_host.setParent(None)
+        self.form_host = QWidget()
+        form = QFormLayout(self.form_host)
+        self.controls = {}
+        state = self.current
+        if state is None:
+            self.title.setText("No model: add one from the list above.")
+        else:
+            model = state.model
+            formula = "<br>".join(model.formula)
+            self.title.setText(f"<b>{state.label}</b> — {model.title}<br><small>{formula}</small>")
+            for param in model.params.values():
+                control = ParamControl(state, param)
+                label = QLabel(param.name)
+                label.setToolTip(param.doc)
+                form.addRow(label, control)
+                self.controls[param.name] = control
+            state.changed.connect(self.refresh)
+        self.layout_.insertWidget(1, self.form_host)
+
+    def refresh(self) -> None:
+        state = self.current
+        if state is None:
+            return
+        if set(self.controls) != set(state.model.params):
+            self.rebuild()  # the file was edited and its header changed
+            return
+        for control in self.controls.values():
+            control.param = state.model.params[control.param.name]
+            control.refresh()
+
+
+class ModelList(QWidget):
+    """Models in the lab: add, duplicate, remove, colour, visible (check box), solo."""
+
+    open_file = pyqtSignal()
+
+    def __init__(self, lab: LabState):
+        super().__init__()
+        self.lab = lab
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        row = QHBoxLayout()
+        self.library = QComboBox()
+        self.library.addItems(model_names())
+        add = QPushButton("Add")
+        add.clicked.connect(self.add_selected)
+        opener = QPushButton("Open…")
+        opener.setToolTip("open a model .glsl file or a BRDF Explorer .brdf file (watched)")
+        opener.clicked.connect(self.open_file.emit)
+        row.addWidget(self.library, 1)
+        row.addWidget(add)
+        row.addWidget(opener)
+        layout.addLayout(row)
+        self.list = QListWidget()
+        self.list.setMaximumHeight(140)
+        self.list.currentRowChanged.connect(self._selected)
+        self.list.itemChanged.connect(self._checked)
+        layout.addWidget(self.list)
+        buttons = QHBoxLayout()
+        for text, slot, tip in (
+            ("Duplicate", lambda: self._on_current(self.lab.duplicate), "a copy to vary"),
+            ("Remove", lambda: self._on_current(self.lab.remove), "remove the model"),
+            ("Solo", lambda: self._on_current(self.lab.set_solo), "show only this model"),
+            ("Colour", self.pick_color, "the model's colour in every view"),
+        ):
+            button = QPushButton(text)
+            button.setToolTip(tip)
+            button.clicked.connect(slot)
+            buttons.addWidget(button)
+        layout.addLayout(buttons)
+        lab.models_changed.connect(self.rebuild)
+        lab.changed.connect(self._update_labels)
+
+    def add_selected(self) -> None:
+        from lab.models import load_model
+
+        self.lab.add(load_model(self.library.currentText()))
+
+    def _on_current(self, action) -> None:
+        if self.lab.selected is not None:
+            action(self.lab.selected)
+
+    def pick_color(self) -> None:
+        state = self.lab.selected
+        if state is not None:
+            color = QColorDialog.getColor(QColor(state.color), self)
+            if color.isValid():
+                state.set_color(color.name())
+
+    def rebuild(self) -> None:
+        self.list.blockSignals(True)
+        self.list.clear()
+        for _ in self.lab.models:
+            item = QListWidgetItem()
+            item.setFlags(item.flags() | Qt.ItemFlag.ItemIsUserCheckable)
+            self.list.addItem(item)
+        self.list.blockSignals(False)
+        self._update_labels()
+
+    def _update_labels(self) -> None:
+        self.list.blockSignals(True)
+        for row, state in enumerate(self.lab.models):
+            item = self.list.item(row)
+            if item is None:
+                continue
+            solo = "  [solo]" if self.lab.solo is state else ""
+            error = "  ⚠ error" if state.error else ""
+            item.setText(f"{state.label}{solo}{error}")
+            pixmap = QPixmap(14, 14)
+            pixmap.fill(QColor(state.color))
+            item.setIcon(QIcon(pixmap))
+            item.setCheckState(Qt.CheckState.Checked if state.visible else Qt.CheckState.Unchecked)
+            if state is self.lab.selected and self.list.currentRow() != row:
+                self.list.setCurrentRow(row)
+        self.list.blockSignals(False)
+
+    def _selected(self, row: int) -> None:
+        if 0 <= row < len(self.lab.models):
+            self.lab.select(self.lab.models[row])
+
+    def _checked(self, item: QListWidgetItem) -> None:
+        row = self.list.row(item)
+        if 0 <= row < len(self.lab.models):
+            self.lab.models[row].set_visible(item.checkState() == Qt.CheckState.Checked)
+
+
+class SettingSlider(QWidget):
+    """A labelled slider bound to one float setting (theta_i, phi_i, exposure, ...)."""
+
+    def __init__(self, settings: Settings, name: str, label: str, low: float, high: float,
+                 step: float = 0.5):
+        super().__init__()
+        self.settings, self.name, self.low, self.step = settings, name, low, step
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(QLabel(label))
+        self.slider = QSlider(Qt.Orientation.Horizontal)
+        self.slider.setRange(0, round((high - low) / step))
+        self.slider.setMinimumWidth(60)
+        self.value_label = QLabel()
+        self.value_label.setFixedWidth(48)
+        layout.addWidget(self.slider, 1)
+        layout.addWidget(self.value_label)
+        self.slider.valueChanged.connect(
+            lambda pos: settings.set(name, low + pos * step)
+        )
+        settings.changed.connect(self._changed)
+        self._changed(name)
+
+    def _changed(self, name: str) -> None:
+        if name != self.name:
+            return
+        value = float(self.settings[self.name])
+        self.slider.blockSignals(True)
+        self.slider.setValue(round((value - self.low) / self.step))
+        self.slider.blockSignals(False)
+        self.value_label.setText(f"{value:g}")
+
+
+class SettingCheck(QCheckBox):
+    """A check box bound to one bool setting."""
+
+    def __init__(self, settings: Settings, name: str, label: str):
+        super().__init__(label)
+        self.setChecked(bool(settings[name]))
+        self.toggled.connect(lambda on: settings.set(name, on))
+        settings.changed.connect(
+            lambda n: n == name and self.isChecked() != settings[name]
+            and self.setChecked(bool(settings[name]))
+        )
+
+
+class SettingCombo(QComboBox):
+    """A menu bound to one int setting (an index)."""
+
+    def __init__(self, settings: Settings, name: str, items: tuple[str, ...]):
+        super().__init__()
+        self.addItems(items)
+        self.setCurrentIndex(int(settings[name]))
+        self.currentIndexChanged.connect(lambda i: settings.set(name, i))
+        settings.changed.connect(
+            lambda n: n == name and self.currentIndex() != settings[name]
+            and self.setCurrentIndex(int(settings[name]))
+        )

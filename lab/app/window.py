@@ -1,0 +1,364 @@
+"""The main window: docks for the models, the light and every view; files, presets, export."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from PyQt6.QtCore import QFileSystemWatcher, Qt, QTimer, pyqtSignal
+from PyQt6.QtGui import QAction, QFont, QKeySequence
+from PyQt6.QtWidgets import (
+    QApplication,
+    QDockWidget,
+    QFileDialog,
+    QMainWindow,
+    QPlainTextEdit,
+    QScrollArea,
+    QVBoxLayout,
+    QWidget,
+)
+
+from lab.app.renderer import AppRenderer
+from lab.app.state import LabState, dump_toml, load_any, read_preset, shipped_presets
+from lab.app.views import VIEW_CLASSES, View
+from lab.app.widgets import ModelList, ParamPanel, SettingSlider
+from lab.glsl import ShaderCompileError
+from lab.models import Model, ModelError, load_model, model_names
+
+REFINE_DELAY_MS = 150
+
+
+class MainWindow(QMainWindow):
+    """The lab. `frame_done(n)` is emitted after each redraw of the visible views."""
+
+    frame_done = pyqtSignal(int)
+    file_reloaded = pyqtSignal(str)
+
+    def __init__(self, renderer: AppRenderer | None = None):
+        super().__init__()
+        self.setWindowTitle("brdf-lab")
+        self.renderer = renderer or AppRenderer()
+        self.lab = LabState()
+        self.frames = 0
+        self.frame_times: list[float] = []
+        self.presets = shipped_presets()
+        self.preset_index = -1
+        self.presenter = False
+        self.base_font = QFont(QApplication.font())
+        self.setDockNestingEnabled(True)
+        self._build_controls()
+        self.views: list[View] = []
+        self.docks: dict[str, QDockWidget] = {}
+        self._build_views()
+        self._build_menus()
+        # Redraws are coalesced: many changes in one event-loop turn make one frame.
+        self._pending = False
+        self._refine: list[View] = []
+        self.refine_timer = QTimer(self)
+        self.refine_timer.setSingleShot(True)
+        self.refine_timer.timeout.connect(self._refine_step)
+        self.lab.changed.connect(self.request)
+        # Watched model files: reload on save, keep the last good version on errors.
+        self.watcher = QFileSystemWatcher(self)
+        self.watcher.fileChanged.connect(self._file_changed)
+        self.pending_files: set[str] = set()
+        self._changed_files: set[str] = set()
+        self.reload_timer = QTimer(self)
+        self.reload_timer.setSingleShot(True)
+        self.reload_timer.setInterval(120)
+        self.reload_timer.timeout.connect(self._reload_changed)
+        self.resize(1280, 800)
+
+    # -- layout -------------------------------------------------------------------------
+    def _build_controls(self) -> None:
+        panel = QWidget()
+        layout = QVBoxLayout(panel)
+        self.model_list = ModelList(self.lab)
+        self.model_list.open_file.connect(self.ask_open)
+        layout.addWidget(self.model_list)
+        s = self.lab.settings
+        self.theta_slider = SettingSlider(s, "theta_i", "θi", 0.0, 90.0, 0.5)
+        self.phi_slider = SettingSlider(s, "phi_i", "φi", 0.0, 360.0, 0.5)
+        layout.addWidget(self.theta_slider)
+        layout.addWidget(self.phi_slider)
+        self.params = ParamPanel(self.lab)
+        scroll = QScrollArea()
+        scroll.setWidgetResizable(True)
+        scroll.setWidget(self.params)
+        layout.addWidget(scroll, 1)
+        dock = QDockWidget("Models, light and parameters", self)
+        dock.setObjectName("controls")
+        dock.setWidget(panel)
+        dock.setMinimumWidth(330)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        self.errors = QPlainTextEdit()
+        self.errors.setReadOnly(True)
+        self.errors.setPlaceholderText("compile errors of opened files appear here")
+        self.error_dock = QDockWidget("Errors", self)
+        self.error_dock.setObjectName("errors")
+        self.error_dock.setWidget(self.errors)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.error_dock)
+        self.error_dock.hide()
+
+    def _build_views(self) -> None:
+        areas = {"sphere": Qt.DockWidgetArea.RightDockWidgetArea,
+                 "polar": Qt.DockWidgetArea.RightDockWidgetArea,
+                 "lobe3d": Qt.DockWidgetArea.RightDockWidgetArea,
+                 "slice": Qt.DockWidgetArea.BottomDockWidgetArea,
+                 "albedo": Qt.DockWidgetArea.BottomDockWidgetArea,
+                 "object": Qt.DockWidgetArea.BottomDockWidgetArea}
+        for cls in VIEW_CLASSES:
+            view = cls(self.lab, self.renderer)
+            dock = QDockWidget(cls.title, self)
+            dock.setObjectName(cls.name)
+            dock.setWidget(view)
+            dock.visibilityChanged.connect(lambda shown: shown and self.request())
+            self.addDockWidget(areas[cls.name], dock)
+            self.views.append(view)
+            self.docks[cls.name] = dock
+        # Spheres on top; polar and 3D lobe beside each other; the rest in a row below.
+        self.splitDockWidget(self.docks["sphere"], self.docks["polar"], Qt.Orientation.Vertical)
+        self.splitDockWidget(self.docks["polar"], self.docks["lobe3d"], Qt.Orientation.Horizontal)
+        self.splitDockWidget(self.docks["slice"], self.docks["albedo"], Qt.Orientation.Horizontal)
+        self.splitDockWidget(self.docks["albedo"], self.docks["object"], Qt.Orientation.Horizontal)
+        self.resizeDocks([self.docks["sphere"], self.docks["polar"]], [320, 260],
+                         Qt.Orientation.Vertical)
+
+    def view(self, name: str) -> View:
+        return next(v for v in self.views if v.name == name)
+
+    def _build_menus(self) -> None:
+        bar = self.menuBar()
+        file_menu = bar.addMenu("&File")
+        add_menu = file_menu.addMenu("Add model")
+        for name in model_names():
+            add_menu.addAction(name, lambda n=name: self.lab.add(load_model(n)))
+        self._action(file_menu, "Open model file (.glsl, .brdf)…", self.ask_open, "Ctrl+O")
+        file_menu.addSeparator()
+        self._action(file_menu, "Load preset…", self.ask_load_preset, "Ctrl+L")
+        self._action(file_menu, "Save preset…", self.ask_save_preset, "Ctrl+S")
+        export = file_menu.addMenu("Export view as PNG")
+        for view in self.views:
+            export.addAction(view.title, lambda v=view: self.ask_export(v))
+        self._action(file_menu, "Export polar data as CSV…", self.view("polar")._ask_csv)
+        file_menu.addSeparator()
+        self._action(file_menu, "Quit", self.close, "Ctrl+Q")
+        presets = bar.addMenu("&Presets")
+        for index, path in enumerate(self.presets):
+            title = read_preset(path).get("title", path.stem)
+            presets.addAction(title, lambda i=index: self.step_preset(to=i))
+        presets.addSeparator()
+        self._action(presets, "Next preset", lambda: self.step_preset(1), "PgDown")
+        self._action(presets, "Previous preset", lambda: self.step_preset(-1), "PgUp")
+        views = bar.addMenu("&View")
+        for dock in self.findChildren(QDockWidget):
+            views.addAction(dock.toggleViewAction())
+        views.addSeparator()
+        self._action(views, "Presenter mode (large fonts, full screen)", self.toggle_presenter,
+                     "F11")
+
+    def _action(self, menu, text: str, slot, shortcut: str | None = None) -> QAction:
+        action = menu.addAction(text)
+        action.triggered.connect(slot)
+        if shortcut:
+            action.setShortcut(QKeySequence(shortcut))
+            action.setShortcutContext(Qt.ShortcutContext.ApplicationShortcut)
+        return action
+
+    # -- frames -------------------------------------------------------------------------
+    def request(self) -> None:
+        if not self._pending:
+            self._pending = True
+            QTimer.singleShot(0, self.frame)
+
+    def frame(self) -> None:
+        """Redraw every shown view at interactive quality; refinement comes later."""
+        self._pending = False
+        start = time.perf_counter()
+        for state in self.lab.models:
+            if not state.from_file:
+                state.error = ""
+        self._refine = [v for v in self.views if v.is_shown() and v.redraw(fast=True)]
+        self.frames += 1
+        self.frame_times.append(time.perf_counter() - start)
+        if self._refine:
+            self.refine_timer.start(REFINE_DELAY_MS)
+        self.frame_done.emit(self.frames)
+
+    def _refine_step(self) -> None:
+        # One view per event-loop turn, so a refinement never holds back user input.
+        if self._refine:
+            view = self._refine.pop(0)
+            if view.is_shown():
+                view.redraw(fast=False)
+        if self._refine:
+            self.refine_timer.start(0)
+
+    def settle(self) -> None:
+        """Run pending frames and refinements now (tests, export, benchmark)."""
+        if self._pending:
+            self.frame()
+        self.refine_timer.stop()
+        while self._refine:
+            self._refine_step()
+        self.refine_timer.stop()
+
+    # -- files --------------------------------------------------------------------------
+    def ask_open(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(
+            self, "Open a model", "", "Models (*.glsl *.brdf);;All files (*)")
+        if path:
+            self.open_file(path)
+
+    def check(self, model: Model) -> None:
+        """Compile the model for the views it is drawn in; raises ShaderCompileError."""
+        s = self.lab.settings
+        self.renderer.sphere(model, model.defaults(), (s["theta_i"], s["phi_i"]), size=8)
+        self.renderer.polar(model, model.defaults(), s["theta_i"], s["phi_i"])
+
+    def show_error(self, path: str, err: Exception) -> None:
+        text = str(err)
+        self.errors.setPlainText(f"{path}: the last good version keeps running.\n{text}")
+        self.error_dock.show()
+        self.statusBar().showMessage(text.splitlines()[0] if text else "error", 10000)
+
+    def error_text(self) -> str:
+        return self.errors.toPlainText()
+
+    def open_file(self, path: str | Path):
+        """Add a model from a file and watch it; errors go to the error panel."""
+        path = str(Path(path).resolve())
+        self.watch(path)
+        try:
+            model = load_any(path)
+            self.check(model)
+        except (ModelError, ShaderCompileError) as err:
+            self.pending_files.add(path)
+            self.show_error(path, err)
+            return None
+        self.pending_files.discard(path)
+        self.statusBar().showMessage(f"opened {path} (watched for changes)", 5000)
+        return self.lab.add(model, from_file=True)
+
+    def watch(self, path: str) -> None:
+        if path not in self.watcher.files() and Path(path).exists():
+            self.watcher.addPath(path)
+
+    def _file_changed(self, path: str) -> None:
+        self._changed_files.add(path)
+        self.reload_timer.start()
+
+    def _reload_changed(self) -> None:
+        for path in sorted(self._changed_files):
+            self.reload(path)
+        self._changed_files.clear()
+
+    def reload(self, path: str) -> None:
+        """Recompile a watched file; on error keep the last good version running."""
+        self.watch(path)  # editors that save by renaming drop the watch
+        states = [m for m in self.lab.models if m.from_file
+                  and str(Path(m.model.path).resolve()) == path]
+        if not states and path not in self.pending_files:
+            return
+        try:
+            model = load_any(path)
+            self.check(model)
+        except (ModelError, ShaderCompileError) as err:
+            for state in states:
+                state.error = str(err)
+            self.show_error(path, err)
+            self.lab.changed.emit()
+            self.file_reloaded.emit(path)
+            return
+        self.errors.clear()
+        self.error_dock.hide()
+        if path in self.pending_files:
+            self.pending_files.discard(path)
+            self.lab.add(model, from_file=True)
+        for state in states:
+            old = state.model
+            state.error = ""
+            state.replace_model(model)
+            self.renderer.forget(old) if old.code != model.code else None
+        self.statusBar().showMessage(f"reloaded {path}", 4000)
+        self.file_reloaded.emit(path)
+
+    # -- presets ------------------------------------------------------------------------
+    def preset_dict(self, path: Path | None = None) -> dict:
+        data = {"title": self.windowTitle().removeprefix("brdf-lab — ") or "brdf-lab state"}
+        data.update(self.lab.to_dict(path.parent if path else None))
+        data["views"] = [name for name, dock in self.docks.items() if not dock.isHidden()]
+        return data
+
+    def save_preset(self, path: str | Path) -> Path:
+        path = Path(path)
+        data = self.preset_dict(path)
+        settings = data.pop("settings")
+        ordered = {k: v for k, v in data.items() if k != "model"}
+        ordered["settings"] = settings
+        ordered["model"] = data["model"]
+        path.write_text(dump_toml(ordered), encoding="utf-8")
+        return path
+
+    def load_preset(self, path: str | Path) -> None:
+        """Replace the whole state with a preset's; raises ModelError on a bad file."""
+        path = Path(path).resolve()
+        data = read_preset(path)
+        self.lab.from_dict(data, base=path.parent, where=str(path))
+        views = data.get("views")
+        if isinstance(views, list):
+            for name, dock in self.docks.items():
+                dock.setVisible(name in views)
+        for state in self.lab.models:
+            if state.from_file:
+                self.watch(str(Path(state.model.path).resolve()))
+        title = str(data.get("title", path.stem))
+        self.setWindowTitle(f"brdf-lab — {title}")
+        notes = str(data.get("notes", ""))
+        self.statusBar().showMessage(f"{title}: {notes}" if notes else title)
+        self.request()
+
+    def ask_load_preset(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Load preset", "", "Presets (*.toml)")
+        if path:
+            try:
+                self.load_preset(path)
+            except ModelError as err:
+                self.show_error(path, err)
+
+    def ask_save_preset(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save preset", "preset.toml",
+                                              "Presets (*.toml)")
+        if path:
+            self.save_preset(path)
+            self.statusBar().showMessage(f"saved {path}", 4000)
+
+    def step_preset(self, step: int = 1, to: int | None = None) -> None:
+        """Go to the next/previous shipped preset (presenter keys: PgDown / PgUp)."""
+        if not self.presets:
+            return
+        if to is None:
+            to = (self.preset_index + step) % len(self.presets)
+        self.preset_index = to
+        self.load_preset(self.presets[to])
+
+    def toggle_presenter(self) -> None:
+        self.presenter = not self.presenter
+        font = QFont(self.base_font)
+        if self.presenter:
+            font.setPointSizeF(self.base_font.pointSizeF() * 1.6)
+        QApplication.setFont(font)
+        for widget in self.findChildren(QWidget):
+            widget.setFont(font)
+        if self.presenter:
+            self.showFullScreen()
+        else:
+            self.showNormal()
+
+    # -- export -------------------------------------------------------------------------
+    def ask_export(self, view: View) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Export view", f"{view.name}.png",
+                                              "PNG (*.png)")
+        if path:
+            self.settle()
+            view.export_png(path)
