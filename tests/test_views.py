@@ -121,3 +121,30 @@ def test_lobe3d_matches_probe(renderer):
         "ward", {"alpha_x": 0.1, "alpha_y": 0.3}, [[30.0, 0.0, theta_o[i], phi_o[j]]]
     )
     np.testing.assert_allclose(f[i, j], direct[0], rtol=1e-5)
+
+
+def test_softpipe_renders_like_llvmpipe(renderer, tmp_path):
+    """A second, independent rasterizer gives the same sphere (to float rounding)."""
+    import os
+    import subprocess
+    import sys
+
+    script = (
+        "import numpy as np, sys; from lab.render import Renderer; from lab.gl import describe;"
+        "r = Renderer(); print(describe(r.ctx));"
+        "np.save(sys.argv[1], r.sphere('cook_torrance', {'m': 0.2}, (40.0, 30.0), size=128))"
+    )
+    out = tmp_path / "softpipe.npy"
+    env = {**os.environ, "GALLIUM_DRIVER": "softpipe"}
+    result = subprocess.run(
+        [sys.executable, "-c", script, str(out)],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "softpipe" in result.stdout
+    theirs = np.load(out)
+    ours = renderer.sphere("cook_torrance", {"m": 0.2}, (40.0, 30.0), size=128)
+    np.testing.assert_allclose(theirs, ours, rtol=1e-3, atol=1e-5)
