@@ -67,6 +67,7 @@ class MainWindow(QMainWindow):
         self.reload_timer.setSingleShot(True)
         self.reload_timer.setInterval(120)
         self.reload_timer.timeout.connect(self._reload_changed)
+        self.statusBar().showMessage("ready")  # created now so the layout does not jump later
         self.resize(1280, 800)
 
     # -- layout -------------------------------------------------------------------------

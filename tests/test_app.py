@@ -1,0 +1,230 @@
+"""The desktop lab through its real window and real OpenGL (run under xvfb-run)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pytestqt")
+if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+    pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
+
+from lab.app.renderer import AppRenderer  # noqa: E402
+from lab.app.state import shipped_presets  # noqa: E402
+from lab.app.window import MainWindow  # noqa: E402
+from lab.models import MODEL_DIR, load_model  # noqa: E402
+
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+@pytest.fixture(scope="module")
+def app_renderer(ctx):
+    return AppRenderer(ctx)
+
+
+@pytest.fixture
+def window(qtbot, app_renderer):
+    win = MainWindow(app_renderer)
+    qtbot.addWidget(win)
+    win.resize(1280, 800)
+    win.show()
+    qtbot.waitExposed(win)
+    return win
+
+
+def settle(qtbot, win: MainWindow) -> None:
+    """Wait for the pending frame, then run the refinements too."""
+    qtbot.wait(1)
+    win.request()
+    with qtbot.waitSignal(win.frame_done, timeout=5000):
+        pass
+    win.settle()
+    qtbot.wait(1)
+
+
+def sphere_image(win: MainWindow, index: int = 0) -> np.ndarray:
+    return win.view("sphere").floats[index][1]
+
+
+def width_at_half(theta: np.ndarray, values: np.ndarray) -> float:
+    """Width (degrees) of the part of the lobe above half its height over the diffuse floor."""
+    floor = values.min()
+    above = theta[values - floor >= 0.5 * (values.max() - floor)]
+    return float(above.max() - above.min())
+
+
+def test_start_add_two_models_and_open_every_view(qtbot, window, output_dir):
+    window.lab.add(load_model("phong"))
+    window.lab.add(load_model("cook_torrance"))
+    settle(qtbot, window)
+    assert [s.label for s, _ in window.view("sphere").floats] == ["phong", "cook_torrance"]
+    for view in window.views:
+        assert view.is_shown(), view.name
+    assert len(window.view("polar").data) == 2
+    assert len(window.view("lobe3d").data) == 2
+    assert len(window.view("slice").data) == 2
+    assert len(window.view("albedo").data) == 2
+    assert window.view("object").image is not None
+    # Something is lit: the sphere has bright pixels, the object too.
+    assert sphere_image(window)[..., :3].max() > 0.3
+    assert window.view("object").image[..., 3].sum() > 1000
+    window.grab().save(str(output_dir / "app_main_window.png"))
+    for view in window.views:
+        view.export_png(output_dir / f"app_view_{view.name}.png")
+        assert (output_dir / f"app_view_{view.name}.png").stat().st_size > 1000
+    # Each object mode renders (geometry, single BRDF, diffuse texture, textured parameters).
+    for mode in range(4):
+        window.lab.settings.set("mode", mode)
+        settle(qtbot, window)
+        assert window.view("object").image[..., :3].max() > 0.05
+        window.view("object").export_png(output_dir / f"app_view_object_mode{mode}.png")
+
+
+def test_raising_phong_exponent_narrows_the_lobe(qtbot, window):
+    window.lab.add(load_model("phong"))
+    window.lab.add(load_model("lambert"))
+    phong = window.lab.models[0]
+    window.lab.select(phong)
+    window.lab.settings.set("theta_i", 30.0)
+    settle(qtbot, window)
+    polar = window.view("polar")
+    theta, before = polar.curve(phong)
+    sphere_before = sphere_image(window).copy()
+    control = window.params.controls["ke"]
+    control.slider.setValue(control.slider.value() + 200)  # a real slider move
+    settle(qtbot, window)
+    ke = phong.values["ke"]
+    assert ke > 100
+    theta, after = polar.curve(phong)
+    assert width_at_half(theta, after) < width_at_half(theta, before)
+    # The plotted data is the formula: kd/pi + ks cos^ke(angle from the mirror direction).
+    kd, ks = np.array(phong.values["kd"]) @ LUMA, np.array(phong.values["ks"]) @ LUMA
+    for offset in (0.0, 5.0, 10.0):
+        index = int(np.argmin(np.abs(theta - (30.0 + offset))))
+        expected = kd / np.pi + ks * np.cos(np.radians(offset)) ** ke
+        assert after[index] == pytest.approx(expected, rel=1e-3)
+    # The sphere's highlight shrinks: fewer pixels above half the peak.
+    sphere_after = sphere_image(window)
+
+    def bright(img):
+        lum = img[..., :3] @ LUMA
+        return int((lum > 0.5 * lum.max()).sum())
+
+    assert bright(sphere_after) < bright(sphere_before)
+    assert not np.array_equal(sphere_after, sphere_before)
+    # The other model did not change.
+    assert len(window.view("sphere").floats) == 2
+
+
+def test_syntax_error_names_the_line_and_last_good_version_runs(qtbot, window, tmp_path):
+    good = (MODEL_DIR / "phong.glsl").read_text().replace("@model phong", "@model my_phong")
+    path = tmp_path / "my_phong.glsl"
+    path.write_text(good)
+    state = window.open_file(path)
+    assert state is not None
+    settle(qtbot, window)
+    pixels = sphere_image(window).copy()
+    lines = good.splitlines()
+    broken_line = next(i for i, text in enumerate(lines, 1) if "vec3 R =" in text)
+    lines[broken_line - 1] = lines[broken_line - 1].replace(";", "")  # missing semicolon
+    with qtbot.waitSignal(window.file_reloaded, timeout=10000):
+        path.write_text("\n".join(lines) + "\n")
+    text = window.error_text()
+    assert f"my_phong.glsl:{broken_line}:" in text or f"my_phong.glsl:{broken_line + 1}:" in text
+    assert state.error
+    settle(qtbot, window)
+    assert np.array_equal(sphere_image(window), pixels)  # the last good version keeps running
+    # Fixing the file clears the error and the new code runs (a brighter highlight).
+    fixed = good.replace("ks * pow(RoV, ke)", "2.0 * ks * pow(RoV, ke)")
+    with qtbot.waitSignal(window.file_reloaded, timeout=10000):
+        path.write_text(fixed)
+    settle(qtbot, window)
+    assert window.error_text() == "" and state.error == ""
+    assert sphere_image(window)[..., :3].max() > pixels[..., :3].max() * 1.2
+
+
+def test_preset_round_trip_restores_the_same_pixels(qtbot, window, tmp_path):
+    window.lab.add(load_model("ward"), {"alpha_x": 0.05, "alpha_y": 0.3})
+    window.lab.add(load_model("cook_torrance"), {"distribution": "blinn", "m": 0.17})
+    window.lab.models[1].set_color("#00ff00")
+    window.lab.settings.set("theta_i", 42.5)
+    window.lab.settings.set("phi_i", 20.0)
+    window.lab.settings.set("exposure", 1.0)
+    settle(qtbot, window)
+    spheres = [img.copy() for _, img in window.view("sphere").floats]
+    polar = [p.values.copy() for _, p in window.view("polar").data]
+    path = window.save_preset(tmp_path / "state.toml")
+    assert "alpha_x = 0.05" in path.read_text()
+    window.lab.clear()
+    window.lab.add(load_model("lambert"))
+    window.lab.settings.set("theta_i", 10.0)
+    settle(qtbot, window)
+    window.load_preset(path)
+    settle(qtbot, window)
+    assert [m.model.name for m in window.lab.models] == ["ward", "cook_torrance"]
+    assert window.lab.models[1].color == "#00ff00"
+    restored = [img for _, img in window.view("sphere").floats]
+    assert len(restored) == 2
+    for a, b in zip(spheres, restored, strict=True):
+        assert np.array_equal(a, b)
+    for a, (_, p) in zip(polar, window.view("polar").data, strict=True):
+        assert np.array_equal(a, p.values)
+
+
+def test_shipped_presets_load_and_step(qtbot, window):
+    presets = shipped_presets()
+    assert len(presets) >= 7
+    for _ in presets:
+        window.step_preset(1)
+        settle(qtbot, window)
+        assert window.lab.models, window.windowTitle()
+        assert window.view("sphere").floats or window.docks["sphere"].isHidden()
+
+
+def test_open_brdf_explorer_file(qtbot, window, tmp_path):
+    from test_brdf_explorer import BLINN
+
+    path = tmp_path / "blinn.brdf"
+    path.write_text(BLINN)
+    state = window.open_file(path)
+    assert state is not None and set(state.model.params) == {"n", "normalized", "tint"}
+    assert set(window.params.controls) == {"n", "normalized", "tint"}
+    settle(qtbot, window)
+    image = sphere_image(window)
+    # The tint (1, 0.5, 0.25) shows in the highlight's colour.
+    r, g, b = image[..., :3].reshape(-1, 3)[np.argmax(image[..., 0])]
+    assert g == pytest.approx(r / 2, rel=1e-3) and b == pytest.approx(r / 4, rel=1e-3)
+    # A broken .brdf never crashes: the error names the file's own line.
+    with qtbot.waitSignal(window.file_reloaded, timeout=10000):
+        path.write_text(BLINN.replace("float val =", "float val = = "))
+    assert "blinn.brdf:17:" in window.error_text()
+
+
+def test_exports(qtbot, window, tmp_path):
+    window.lab.add(load_model("phong"))
+    settle(qtbot, window)
+    window.view("polar").export_csv(tmp_path / "polar.csv")
+    rows = (tmp_path / "polar.csv").read_text().splitlines()
+    assert rows[0].startswith("theta_o_deg,phong:fr_r")
+    assert len(rows) == 1 + 181
+
+
+def test_no_display_renders_the_gallery(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    env.pop("QT_QPA_PLATFORM", None)
+    out = tmp_path / "gallery"
+    result = subprocess.run(
+        [sys.executable, "-m", "lab.cli", "app", "--gallery-dir", str(out)],
+        env=env, capture_output=True, text=True, timeout=120,
+        cwd=Path(__file__).parent.parent,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "no display" in result.stdout
+    assert str(out) in result.stdout
+    assert (out / "index.html").exists()
+    assert "Traceback" not in result.stderr
