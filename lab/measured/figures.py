@@ -68,11 +68,23 @@ def fit_figure(table: merl.MerlTable, result: FitResult, out: str | Path,
     fitted = sum(renderer.sphere(result.model, v, (45.0, 0.0), size=256) for v in result.lobes)
     spheres.append(fitted)
     peak = float(np.percentile(spheres[0][..., :3], 99.5))
+    n = len(thetas)
     for k, (image, title) in enumerate(zip(spheres, ("measured (table)", "fitted"), strict=True)):
-        ax = fig.add_subplot(2, 2, 3 + k)
+        ax = fig.add_subplot(2, n, n + 1 + k)
         ax.imshow(_tone(image, peak))
         ax.set_title(f"{title}, light at 45°", fontsize=9)
         ax.axis("off")
+    if n > 2:
+        ax = fig.add_subplot(2, n, 2 * n)
+        ax.axis("off")
+        lines = []
+        for k, values in enumerate(result.lobes, start=1):
+            lines.append(f"lobe {k}")
+            for name, value in values.items():
+                shown = ", ".join(f"{c:.3g}" for c in value) if isinstance(value, tuple) \
+                    else f"{value:.4g}"
+                lines.append(f"  {name} = {shown}")
+        ax.text(0.0, 1.0, "\n".join(lines), va="top", family="monospace", fontsize=8)
     fig.suptitle(f"{result.model} ({len(result.lobes)} lobe(s)) fitted to "
                  f"{table.path.name if table.path else 'table'}: error {result.error:.4g} "
                  f"({result.metric})", fontsize=11)
