@@ -39,7 +39,9 @@ class CheckResult:
     points: float = 0.0
     status: str = "failed"  # passed | failed | error
     message: str = ""
-    rows: list[tuple] = field(default_factory=list)  # probe: theta_i, phi_i, theta_o, phi_o, exp, got
+    rows: list[tuple] = field(
+        default_factory=list
+    )  # probe: theta_i, phi_i, theta_o, phi_o, exp, got
     images: dict[str, bytes] = field(default_factory=dict)  # reference, student, diff (PNG)
     flip: float | None = None
     curve: dict | None = None  # polar: theta_o, expected, got (luminance)
@@ -51,7 +53,9 @@ class CheckResult:
 
 
 def failed(check: Check, message: str, status: str = "failed", **extra) -> CheckResult:
-    return CheckResult(check.name, check.kind, check.points, status=status, message=message, **extra)
+    return CheckResult(
+        check.name, check.kind, check.points, status=status, message=message, **extra
+    )
 
 
 # -- inputs: direction pairs, hidden variants -----------------------------------------------
@@ -87,8 +91,15 @@ def polar_angles(check: Check) -> np.ndarray:
     """
     theta = np.arange(-88.0, 88.5, 1.0)
     phi_o = np.where(theta >= 0.0, check.phi_i + 180.0, check.phi_i)
-    return np.stack([np.full_like(theta, check.theta_i), np.full_like(theta, check.phi_i),
-                     np.abs(theta), phi_o % 360.0], axis=1)
+    return np.stack(
+        [
+            np.full_like(theta, check.theta_i),
+            np.full_like(theta, check.phi_i),
+            np.abs(theta),
+            phi_o % 360.0,
+        ],
+        axis=1,
+    )
 
 
 def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
@@ -98,15 +109,23 @@ def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
     for name, param in model.params.items():
         value = params.get(name, param.default)
         if param.kind == "float":
-            value = float(np.clip(value * math.exp(rng.uniform(-0.35, 0.35)), param.minimum,
-                                  param.maximum))
+            value = float(
+                np.clip(value * math.exp(rng.uniform(-0.35, 0.35)), param.minimum, param.maximum)
+            )
         elif param.kind == "color":
             value = tuple(float(c) for c in rng.uniform(0.05, 0.9, 3))
         params[name] = value
-    lights = [Light(float(rng.uniform(5, 70)), float(rng.uniform(0, 360)), lt.rgb)
-              for lt in check.lights]
-    return replace(check, params=params, lights=lights, seed=int(rng.integers(1 << 30)),
-                   theta_i=float(rng.uniform(15, 70)), phi_i=float(rng.uniform(0, 360)))
+    lights = [
+        Light(float(rng.uniform(5, 70)), float(rng.uniform(0, 360)), lt.rgb) for lt in check.lights
+    ]
+    return replace(
+        check,
+        params=params,
+        lights=lights,
+        seed=int(rng.integers(1 << 30)),
+        theta_i=float(rng.uniform(15, 70)),
+        phi_i=float(rng.uniform(0, 360)),
+    )
 
 
 # -- rendering ------------------------------------------------------------------------------
@@ -126,14 +145,17 @@ def render(renderer: Renderer, model: Model, check: Check) -> np.ndarray:
     pad = MAX_LIGHTS - len(lights)
     uniforms = {
         "u_resolution": (float(check.size), float(check.size)),
-        "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights] + [(0.0, 0.0, 1.0)] * pad,
+        "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
+        + [(0.0, 0.0, 1.0)] * pad,
         "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
         "u_ambient": tuple(check.ambient),
         "u_multiply_cos": True,
     }
     preamble = f"const int LIGHT_COUNT = {len(lights)};"
     # The sphere view's own plumbing, so grading templates (shaders/views/grade_*.glsl) share it.
-    fbo = renderer._run(model, check.view, check.params, (check.size, check.size), uniforms, preamble)
+    fbo = renderer._run(
+        model, check.view, check.params, (check.size, check.size), uniforms, preamble
+    )
     return renderer._read(fbo)[::-1].copy()
 
 
@@ -174,24 +196,36 @@ def fmt_rgb(rgb) -> str:
     return f"({r:.4g}, {g:.4g}, {b:.4g})"
 
 
-def compare_values(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray,
-                   what: str) -> CheckResult:
+def compare_values(
+    check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray, what: str
+) -> CheckResult:
     """Values within atol + rtol |expected|; failing rows listed with their directions."""
     bad = bad_values(got)
     error = np.abs(np.nan_to_num(got, nan=np.inf) - expected)
     wrong = bad | (error > check.atol + check.rtol * np.abs(expected)).any(axis=-1)
     order = np.argsort(-np.where(bad, np.inf, (error / (check.atol + np.abs(expected))).max(-1)))
-    rows = [(*(round(float(a), 1) for a in angles[i]), fmt_rgb(expected[i]), fmt_rgb(got[i]))
-            for i in order[: min(6, int(wrong.sum()))]]
+    rows = [
+        (*(round(float(a), 1) for a in angles[i]), fmt_rgb(expected[i]), fmt_rgb(got[i]))
+        for i in order[: min(6, int(wrong.sum()))]
+    ]
     n, n_wrong = len(got), int(wrong.sum())
     if bad.any():
-        return failed(check, f"{int(bad.sum())} of {n} {what} are NaN, infinite or negative; "
-                      "a BRDF is finite and >= 0 (guard divisions and pow of negatives)", rows=rows)
+        return failed(
+            check,
+            f"{int(bad.sum())} of {n} {what} are NaN, infinite or negative; "
+            "a BRDF is finite and >= 0 (guard divisions and pow of negatives)",
+            rows=rows,
+        )
     if n_wrong:
-        return failed(check, f"{n_wrong} of {n} {what} differ from the solution by more than "
-                      f"{check.rtol:g} x value + {check.atol:g}", rows=rows)
-    return CheckResult(check.name, check.kind, check.points, check.points, "passed",
-                       f"all {n} {what} match")
+        return failed(
+            check,
+            f"{n_wrong} of {n} {what} differ from the solution by more than "
+            f"{check.rtol:g} x value + {check.atol:g}",
+            rows=rows,
+        )
+    return CheckResult(
+        check.name, check.kind, check.points, check.points, "passed", f"all {n} {what} match"
+    )
 
 
 def heatmap(diff: np.ndarray, threshold: float) -> np.ndarray:
@@ -221,15 +255,21 @@ def compare_image(check: Check, reference: np.ndarray, raw: np.ndarray) -> Check
         "difference": png(heatmap(diff, check.threshold)),
     }
     extra = {"images": images, "flip": flip}
-    summary = f"{100 * fraction:.2f}% of pixels off by more than {check.threshold:g}/255 " \
-              f"(allowed {100 * check.max_fraction:.2f}%), mean FLIP {flip:.4f}"
+    summary = (
+        f"{100 * fraction:.2f}% of pixels off by more than {check.threshold:g}/255 "
+        f"(allowed {100 * check.max_fraction:.2f}%), mean FLIP {flip:.4f}"
+    )
     if bad.any():
-        return failed(check, f"{int(bad.sum())} pixels are NaN, infinite or negative (magenta); "
-                      + summary, **extra)
+        return failed(
+            check,
+            f"{int(bad.sum())} pixels are NaN, infinite or negative (magenta); " + summary,
+            **extra,
+        )
     if fraction > check.max_fraction:
         return failed(check, summary, **extra)
-    return CheckResult(check.name, check.kind, check.points, check.points, "passed", summary,
-                       **extra)
+    return CheckResult(
+        check.name, check.kind, check.points, check.points, "passed", summary, **extra
+    )
 
 
 def mean_flip(reference8: np.ndarray, student8: np.ndarray) -> float:
@@ -274,14 +314,21 @@ class Grader:
     def expected(self, exercise: Exercise, check: Check, live: bool) -> np.ndarray:
         """The reference for a check: committed files, or the solution rendered now."""
         if live:
-            return expected_value(render(self.renderer, self.solution_model(exercise), check), check)
+            return expected_value(
+                render(self.renderer, self.solution_model(exercise), check), check
+            )
         if check.kind == "sphere":
             return read_png(exercise.references / f"{check.name}.png")
         with np.load(exercise.references / VALUES_FILE) as data:
             return data[check.name]
 
-    def run(self, exercise: Exercise, submission: Path, seed: int | None = None,
-            skip: frozenset[str] = frozenset()) -> Iterator[CheckResult]:
+    def run(
+        self,
+        exercise: Exercise,
+        submission: Path,
+        seed: int | None = None,
+        skip: frozenset[str] = frozenset(),
+    ) -> Iterator[CheckResult]:
         """Grade every check not in `skip`, yielding each result as soon as it is known."""
         todo = [(i, c) for i, c in enumerate(exercise.checks) if c.name not in skip]
         try:
@@ -297,13 +344,15 @@ class Grader:
                     check = hidden_variant(check, self.solution_model(exercise), seed, index)
                 expected = self.expected(exercise, check, live=seed is not None)
             except (OSError, KeyError, ModelError, SubmissionError) as err:
-                yield failed(check, f"cannot get the reference: {err} (ask your instructor)",
-                             status="error")
+                yield failed(
+                    check, f"cannot get the reference: {err} (ask your instructor)", status="error"
+                )
                 continue
             yield self.grade(exercise, check, model, code, expected)
 
-    def grade(self, exercise: Exercise, check: Check, model: Model, code: str,
-              expected: np.ndarray) -> CheckResult:
+    def grade(
+        self, exercise: Exercise, check: Check, model: Model, code: str, expected: np.ndarray
+    ) -> CheckResult:
         try:
             raw = render(self.renderer, model, check)
         except ShaderCompileError as err:
@@ -321,7 +370,11 @@ class Grader:
             angles = polar_angles(check)
             result = compare_values(check, angles, expected, raw, "points of the polar curve")
             theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
-            result.curve = {"theta_o": theta.tolist(), "expected": luminance(expected),
-                            "got": luminance(raw), "theta_i": check.theta_i}
+            result.curve = {
+                "theta_o": theta.tolist(),
+                "expected": luminance(expected),
+                "got": luminance(raw),
+                "theta_i": check.theta_i,
+            }
             return result
         return compare_values(check, probe_angles(check), expected, raw, "direction pairs")

@@ -23,9 +23,11 @@ def _exercises(paths: list[str]):
 
 def locate(student: Path, exercise) -> Path:
     """A student's file for an exercise: NN_topic/FILE, exercises/NN_topic/FILE or FILE."""
-    candidates = [student / exercise.name / exercise.student_file,
-                  student / "exercises" / exercise.name / exercise.student_file,
-                  student / exercise.student_file]
+    candidates = [
+        student / exercise.name / exercise.student_file,
+        student / "exercises" / exercise.name / exercise.student_file,
+        student / exercise.student_file,
+    ]
     for candidate in candidates:
         if candidate.exists() or candidate.is_symlink():
             return candidate
@@ -101,12 +103,16 @@ def cmd_grade_all(args) -> int:
         (out / "reports").mkdir(parents=True, exist_ok=True)
     except OSError as err:
         raise UsageError(f"cannot create {out}: {err.strerror}") from None
-    tasks = {s.name: [Task(e, locate(s, e), args.seed, key=f"{s.name}/{e.name}") for e in exercises]
-             for s in students}
+    tasks = {
+        s.name: [Task(e, locate(s, e), args.seed, key=f"{s.name}/{e.name}") for e in exercises]
+        for s in students
+    }
     remaining = {name: len(ts) for name, ts in tasks.items()}
     start = time.monotonic()
     with Progress() as progress, Pool(args.workers, args.timeout) as pool:
-        bar = progress.add_task(f"grading {len(students)} students", total=len(students) * len(exercises))
+        bar = progress.add_task(
+            f"grading {len(students)} students", total=len(students) * len(exercises)
+        )
 
         def done(task: Task) -> None:
             progress.advance(bar)
@@ -116,15 +122,19 @@ def cmd_grade_all(args) -> int:
                 mine = tasks[student]
                 html = report.html_report(mine, f"Grading report: {student}")
                 (out / "reports" / f"{student}.html").write_text(html, encoding="utf-8")
-                report.write_json(report.gradescope(mine, sum(t.seconds for t in mine)),
-                                  out / "reports" / f"{student}.json")
+                report.write_json(
+                    report.gradescope(mine, sum(t.seconds for t in mine)),
+                    out / "reports" / f"{student}.json",
+                )
 
         pool.run([t for ts in tasks.values() for t in ts], done)
     seconds = time.monotonic() - start
     report.gradebook(list(tasks.items()), [e.name for e in exercises], out / "gradebook.csv")
     full = sum(1 for ts in tasks.values() if all(t.passed for t in ts))
-    print(f"graded {len(students)} students x {len(exercises)} exercises in {seconds:.1f} s; "
-          f"{full} with full marks; wrote {out / 'gradebook.csv'} and {out / 'reports'}/")
+    print(
+        f"graded {len(students)} students x {len(exercises)} exercises in {seconds:.1f} s; "
+        f"{full} with full marks; wrote {out / 'gradebook.csv'} and {out / 'reports'}/"
+    )
     return 0 if full == len(students) else 1
 
 
@@ -148,18 +158,29 @@ def cmd_bench(args) -> int:
 def register(sub) -> None:
     workers = min(2, os.cpu_count() or 1)
     p = sub.add_parser("grade", help="grade a student's shader against an exercise")
-    p.add_argument("exercise", nargs="+", metavar="EXERCISE_DIR",
-                   help="exercise folder(s), or a folder of exercise folders")
+    p.add_argument(
+        "exercise",
+        nargs="+",
+        metavar="EXERCISE_DIR",
+        help="exercise folder(s), or a folder of exercise folders",
+    )
     p.add_argument("--submission", metavar="FILE", help="the file to grade (default: the stub)")
-    p.add_argument("--from", dest="from_dir", metavar="DIR",
-                   help="find each exercise's file in DIR (NN_topic/FILE or FILE)")
+    p.add_argument(
+        "--from",
+        dest="from_dir",
+        metavar="DIR",
+        help="find each exercise's file in DIR (NN_topic/FILE or FILE)",
+    )
     p.add_argument("--json", metavar="results.json", help="write Gradescope results.json")
     p.add_argument("--html", metavar="report.html", help="write a self-contained HTML report")
     p.add_argument("--classroom", metavar="FILE", help="write the GitHub Classroom result JSON")
     p.add_argument("--seed", type=int, help="hidden mode: random parameters and lights")
     p.add_argument("--timeout", type=float, default=10.0, help="seconds per check (default 10)")
-    p.add_argument("--make-references", action="store_true",
-                   help="(instructor) render references/ from solutions/ and exit")
+    p.add_argument(
+        "--make-references",
+        action="store_true",
+        help="(instructor) render references/ from solutions/ and exit",
+    )
     p.set_defaults(func=cmd_grade)
 
     p = sub.add_parser("grade-all", help="grade a class: one sub-folder per student")

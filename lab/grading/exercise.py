@@ -119,8 +119,10 @@ def load_exercise(folder: str | Path) -> Exercise:
                 raise ExerciseError(f"{spec_path}: check kind {kind!r} is not one of {CHECK_KINDS}")
             lights = _lights(merged.pop("lights", [[45.0, 0.0]]), str(spec_path))
             ambient = tuple(float(c) for c in merged.pop("ambient", (0.0, 0.0, 0.0)))
-            params = {k: tuple(v) if isinstance(v, list) else v
-                      for k, v in merged.pop("params", {}).items()}
+            params = {
+                k: tuple(v) if isinstance(v, list) else v
+                for k, v in merged.pop("params", {}).items()
+            }
             checks.append(Check(kind=kind, lights=lights, ambient=ambient, params=params, **merged))
         exercise = Exercise(
             folder=folder,

@@ -27,8 +27,10 @@ def gradescope_zip(exercises: list[Exercise], out: Path, seed: int | None = None
     run = (TEMPLATES / "run_autograder").read_text(encoding="utf-8")
     run = run.replace("__EXERCISES__", names).replace("__SEED__", f"--seed {seed}" if seed else "")
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
-        for name, text in (("setup.sh", (TEMPLATES / "setup.sh").read_text(encoding="utf-8")),
-                           ("run_autograder", run)):
+        for name, text in (
+            ("setup.sh", (TEMPLATES / "setup.sh").read_text(encoding="utf-8")),
+            ("run_autograder", run),
+        ):
             info = zipfile.ZipInfo(name)
             info.external_attr = 0o755 << 16  # executable, as Gradescope requires
             archive.writestr(info, text)

@@ -1,6 +1,6 @@
 """Reference images and values for the exercises, rendered from solutions/.
 
-    python -m lab.grading.references [EXERCISES_DIR]     (or brdf-lab grade --make-references)
+python -m lab.grading.references [EXERCISES_DIR]     (or brdf-lab grade --make-references)
 """
 
 from __future__ import annotations

@@ -41,15 +41,25 @@ def terminal(tasks: list[Task], console=None) -> None:
 
     console = console or Console(highlight=False, soft_wrap=True)
     for task in tasks:
-        console.print(f"[bold]{task.exercise.name}[/] {escape(task.exercise.title)}  "
-                      f"[dim]{escape(str(task.submission))}[/]")
+        console.print(
+            f"[bold]{task.exercise.name}[/] {escape(task.exercise.title)}  "
+            f"[dim]{escape(str(task.submission))}[/]"
+        )
         for result in task.checks():
-            mark = "[green]PASS[/]" if result.passed else (
-                "[red]FAIL[/]" if result.status == "failed" else "[magenta]ERROR[/]")
-            console.print(f"  {mark} {result.name:28s} {points(result.points):>4}/"
-                          f"{points(result.max_points):<4} {escape(result.message)}")
+            mark = (
+                "[green]PASS[/]"
+                if result.passed
+                else ("[red]FAIL[/]" if result.status == "failed" else "[magenta]ERROR[/]")
+            )
+            console.print(
+                f"  {mark} {result.name:28s} {points(result.points):>4}/"
+                f"{points(result.max_points):<4} {escape(result.message)}"
+            )
             for row in result.rows[:3]:
-                console.print("       " + escape(", ".join(f"{h}={v}" for h, v in zip(ROW_HEADER, row))))
+                console.print(
+                    "       "
+                    + escape(", ".join(f"{h}={v}" for h, v in zip(ROW_HEADER, row, strict=True)))
+                )
             for error in result.errors[1:4]:
                 console.print("       " + escape(error))
     score = sum(t.score for t in tasks)
@@ -62,14 +72,16 @@ def gradescope(tasks: list[Task], seconds: float) -> dict:
     tests = []
     for task in tasks:
         for result in task.checks():
-            tests.append({
-                "name": test_name(task, result),
-                "score": result.points,
-                "max_score": result.max_points,
-                "status": "passed" if result.passed else "failed",
-                "output": check_text(result),
-                "visibility": "visible",
-            })
+            tests.append(
+                {
+                    "name": test_name(task, result),
+                    "score": result.points,
+                    "max_score": result.max_points,
+                    "status": "passed" if result.passed else "failed",
+                    "output": check_text(result),
+                    "visibility": "visible",
+                }
+            )
     passed = sum(1 for t in tests if t["status"] == "passed")
     return {
         "score": sum(t.score for t in tasks),
@@ -86,18 +98,26 @@ def classroom(tasks: list[Task]) -> dict:
     tests = []
     for task in tasks:
         for result in task.checks():
-            tests.append({
-                "name": test_name(task, result),
-                "status": "pass" if result.passed else ("error" if result.status == "error" else "fail"),
-                "score": result.points,
-                "max_score": result.max_points,
-                "message": check_text(result),
-                "filename": str(task.submission),
-                "execution_time": f"{task.seconds:.2f}s",
-            })
+            tests.append(
+                {
+                    "name": test_name(task, result),
+                    "status": "pass"
+                    if result.passed
+                    else ("error" if result.status == "error" else "fail"),
+                    "score": result.points,
+                    "max_score": result.max_points,
+                    "message": check_text(result),
+                    "filename": str(task.submission),
+                    "execution_time": f"{task.seconds:.2f}s",
+                }
+            )
     status = "pass" if all(t["status"] == "pass" for t in tests) else "fail"
-    return {"version": 1, "status": status, "max_score": sum(t.max_score for t in tasks),
-            "tests": tests}
+    return {
+        "version": 1,
+        "status": status,
+        "max_score": sum(t.max_score for t in tasks),
+        "tests": tests,
+    }
 
 
 def write_github_output(result: dict, name: str = "result") -> bool:
@@ -139,38 +159,48 @@ def _svg_curve(curve: dict) -> str:
     paths = []
     for key, colour in (("expected", "#2a6"), ("got", "#c33")):
         points_ = []
-        for theta, value in zip(curve["theta_o"], curve[key]):
+        for theta, value in zip(curve["theta_o"], curve[key], strict=True):
             r = min(max(value, 0.0) / peak, 1.2) * (size / 2 - pad)
             a = math.radians(theta)
             points_.append(f"{size / 2 + r * math.sin(a):.1f},{size / 2 - r * math.cos(a):.1f}")
-        paths.append(f'<polyline fill="none" stroke="{colour}" stroke-width="2" '
-                     f'points="{" ".join(points_)}"/>')
-    return (f'<svg width="{size}" height="{size // 2 + pad}" viewBox="0 0 {size} {size // 2 + pad}">'
-            f'<line x1="0" y1="{size / 2}" x2="{size}" y2="{size / 2}" stroke="#999"/>'
-            + "".join(paths) + '</svg><div><span style="color:#2a6">solution</span> / '
-            '<span style="color:#c33">yours</span> (luminance of f_r in the plane of incidence, '
-            f'light at {curve["theta_i"]:g} deg on the left)</div>')
+        paths.append(
+            f'<polyline fill="none" stroke="{colour}" stroke-width="2" '
+            f'points="{" ".join(points_)}"/>'
+        )
+    return (
+        f'<svg width="{size}" height="{size // 2 + pad}" viewBox="0 0 {size} {size // 2 + pad}">'
+        f'<line x1="0" y1="{size / 2}" x2="{size}" y2="{size / 2}" stroke="#999"/>'
+        + "".join(paths)
+        + '</svg><div><span style="color:#2a6">solution</span> / '
+        '<span style="color:#c33">yours</span> (luminance of f_r in the plane of incidence, '
+        f"light at {curve['theta_i']:g} deg on the left)</div>"
+    )
 
 
 def _check_html(result: CheckResult) -> str:
     e = html.escape
-    parts = [f'<div class="check {e(result.status)}"><b>{e(result.name)}</b> '
-             f'{points(result.points)}/{points(result.max_points)} - {e(result.message)}']
+    parts = [
+        f'<div class="check {e(result.status)}"><b>{e(result.name)}</b> '
+        f"{points(result.points)}/{points(result.max_points)} - {e(result.message)}"
+    ]
     if result.errors:
         parts.append("<pre>" + e("\n".join(result.errors)) + "</pre>")
     if result.images:
         parts.append('<div class="images">')
         for label, data in result.images.items():
             uri = "data:image/png;base64," + base64.b64encode(data).decode()
-            parts.append(f'<figure><img src="{uri}" alt="{e(label)}"><figcaption>{e(label)}'
-                         "</figcaption></figure>")
+            parts.append(
+                f'<figure><img src="{uri}" alt="{e(label)}"><figcaption>{e(label)}'
+                "</figcaption></figure>"
+            )
         parts.append("</div>")
     if result.curve:
         parts.append(_svg_curve(result.curve))
     if result.rows:
         header = "".join(f"<th>{h}</th>" for h in ROW_HEADER)
-        body = "".join("<tr>" + "".join(f"<td>{e(str(v))}</td>" for v in row) + "</tr>"
-                       for row in result.rows)
+        body = "".join(
+            "<tr>" + "".join(f"<td>{e(str(v))}</td>" for v in row) + "</tr>" for row in result.rows
+        )
         parts.append(f"<table><tr>{header}</tr>{body}</table>")
     parts.append("</div>")
     return "".join(parts)
@@ -183,12 +213,16 @@ def html_report(tasks: list[Task], title: str = "Grading report") -> str:
     total = sum(t.max_score for t in tasks)
     body = [f"<h1>{e(title)}</h1><p>Total: <b>{points(score)} / {points(total)}</b></p>"]
     for task in tasks:
-        body.append(f"<h2>{e(task.exercise.name)}: {e(task.exercise.title)} - "
-                    f"{points(task.score)} / {points(task.max_score)}</h2>"
-                    f"<p>File: <code>{e(str(task.submission))}</code></p>")
+        body.append(
+            f"<h2>{e(task.exercise.name)}: {e(task.exercise.title)} - "
+            f"{points(task.score)} / {points(task.max_score)}</h2>"
+            f"<p>File: <code>{e(str(task.submission))}</code></p>"
+        )
         body += [_check_html(r) for r in task.checks()]
-    return (f'<!DOCTYPE html><html><head><meta charset="utf-8"><title>{e(title)}</title>'
-            f"<style>{STYLE}</style></head><body>{''.join(body)}</body></html>")
+    return (
+        f'<!DOCTYPE html><html><head><meta charset="utf-8"><title>{e(title)}</title>'
+        f"<style>{STYLE}</style></head><body>{''.join(body)}</body></html>"
+    )
 
 
 def gradebook(rows: list[tuple[str, list[Task]]], exercises: list[str], path: Path) -> None:
@@ -198,6 +232,11 @@ def gradebook(rows: list[tuple[str, list[Task]]], exercises: list[str], path: Pa
         writer.writerow(["student", *exercises, "total", "max"])
         for student, tasks in rows:
             by_name = {t.exercise.name: t for t in tasks}
-            writer.writerow([student, *(points(by_name[n].score) for n in exercises),
-                             points(sum(t.score for t in tasks)),
-                             points(sum(t.max_score for t in tasks))])
+            writer.writerow(
+                [
+                    student,
+                    *(points(by_name[n].score) for n in exercises),
+                    points(sum(t.score for t in tasks)),
+                    points(sum(t.max_score for t in tasks)),
+                ]
+            )

@@ -53,7 +53,9 @@ class Task:
 
     @property
     def passed(self) -> bool:
-        return all(r.passed for r in self.checks()) and len(self.results) == len(self.exercise.checks)
+        return all(r.passed for r in self.checks()) and len(self.results) == len(
+            self.exercise.checks
+        )
 
     def pending(self) -> list:
         return [c for c in self.exercise.checks if c.name not in self.results]
@@ -78,6 +80,17 @@ def _serve(conn: Connection) -> None:
         except Exception as err:  # the grader must report, never die: say what broke
             detail = traceback.format_exception_only(type(err), err)[-1].strip()
             conn.send(("crash", key, f"internal grader error: {detail}"))
+
+
+def start_method() -> str:
+    """fork (fast: the imports are inherited) unless this process already holds a GL context.
+
+    A forked child would inherit the driver's state without its threads, so then a fork
+    server, started clean, makes the workers instead.
+    """
+    from lab import gl
+
+    return "fork" if gl._offscreen is None else "forkserver"
 
 
 class _Worker:
@@ -117,7 +130,9 @@ class Pool:
     def __init__(self, workers: int = 1, timeout: float = 10.0) -> None:
         self.size = max(1, workers)
         self.timeout = timeout
-        self.context = multiprocessing.get_context("fork")
+        self.context = multiprocessing.get_context(start_method())
+        if self.context.get_start_method() == "forkserver":
+            self.context.set_forkserver_preload(["lab.grading.checks"])
         self.workers: list[_Worker | None] = [_Worker(self.context) for _ in range(self.size)]
 
     def close(self) -> None:
@@ -147,14 +162,20 @@ class Pool:
                     worker.send(task, self.timeout)
             busy = [w for w in self.workers if w is not None and w.task is not None]
             now = time.monotonic()
-            ready = wait([w.conn for w in busy], timeout=max(0.0, min(w.deadline for w in busy) - now))
+            ready = wait(
+                [w.conn for w in busy], timeout=max(0.0, min(w.deadline for w in busy) - now)
+            )
             for worker in busy:
                 if worker.conn in ready:
                     self._receive(worker, queue, on_done)
                 elif time.monotonic() > worker.deadline:
-                    self._abandon(worker, queue, on_done,
-                                  f"did not finish within {self.timeout:g} s (an endless or very "
-                                  "long loop?) and was stopped")
+                    self._abandon(
+                        worker,
+                        queue,
+                        on_done,
+                        f"did not finish within {self.timeout:g} s and was stopped "
+                        "(an endless or very long loop, or code too large to compile?)",
+                    )
         return tasks
 
     def _finish(self, task: Task, on_done) -> None:
@@ -176,7 +197,8 @@ class Pool:
         if kind == "crash":
             for check in task.pending():
                 task.results[check.name] = CheckResult(
-                    check.name, check.kind, check.points, status="error", message=payload)
+                    check.name, check.kind, check.points, status="error", message=payload
+                )
         worker.task = None
         worker.done += 1
         self._finish(task, on_done)
@@ -193,14 +215,18 @@ class Pool:
         if pending:
             check = pending[0]
             task.results[check.name] = CheckResult(
-                check.name, check.kind, check.points, status="error",
-                message=f"the shader {why}")
+                check.name, check.kind, check.points, status="error", message=f"the shader {why}"
+            )
         task.timeouts += 1
         if task.timeouts >= MAX_TIMEOUTS:
             for check in task.pending():
                 task.results[check.name] = CheckResult(
-                    check.name, check.kind, check.points, status="error",
-                    message="not run: the shader was stopped on earlier checks")
+                    check.name,
+                    check.kind,
+                    check.points,
+                    status="error",
+                    message="not run: the shader was stopped on earlier checks",
+                )
         if task.pending():
             queue.appendleft(task)
         else:
