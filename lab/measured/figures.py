@@ -60,6 +60,7 @@ def fit_figure(table: merl.MerlTable, result: FitResult, out: str | Path,
         ax.set_theta_direction(-1)
         ax.set_thetamin(-90)
         ax.set_thetamax(90)
+        ax.set_yticklabels([])  # radial values crowd the half disc; the shapes matter
         ax.set_title(f"f_r (luminance), θi = {theta_i:g}°", fontsize=9)
         if k == 0:
             ax.legend(loc="lower left", fontsize=8)
