@@ -96,3 +96,16 @@ def test_tabulate_noise_is_relative(renderer):
     mask = clean.rgb > 0
     ratio = noisy.rgb[mask] / clean.rgb[mask]
     assert abs(ratio.std() - 0.05) < 0.01 and abs(ratio.mean() - 1) < 0.01
+
+
+def test_lookup_near_the_specular_peak(renderer, gl_clean):
+    """theta_h of a few 1e-4 rad must land in bins 0-1, as float64 numpy puts it."""
+    table = merl.MerlTable.from_rgb(
+        np.broadcast_to(np.arange(90.0)[:, None, None, None] + 1.0, (90, 90, 180, 3))
+    )
+    model = measured_model(table)
+    theta_h = np.array([0.0, 2e-4, 6e-4, 1.5e-3, 4e-3])
+    L, V = merl.directions(theta_h, np.full(5, 0.5), np.full(5, 1.0))
+    got = renderer.probe(model, {"interpolation": "nearest"}, L, V)[:, 0]
+    expected = merl.lookup(table, L, V, "nearest")[:, 0]
+    assert np.allclose(got, expected) and list(expected) == [1.0, 2.0, 2.0, 3.0, 5.0]

@@ -20,14 +20,16 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     vec3 l = vec3(dot(L, X), dot(L, Y), NoL);
     vec3 v = vec3(dot(V, X), dot(V, Y), NoV);
     vec3 h = normalize(l + v);
-    float theta_h = acos(clamp(h.z, -1.0, 1.0));
+    // atan of (sin, cos), not acos: near the peak cos(theta_h) is within float rounding of
+    // 1, and acos would misplace theta_h by a whole bin of the sqrt spacing.
+    float sin_h = length(h.xy);
+    float theta_h = atan(sin_h, h.z);
     // d: l in a frame whose pole is h, i.e. l turned by -phi_h about N, then by -theta_h
     // about the bitangent. The sines and cosines come from h itself (no trigonometry).
-    float sin_h = length(h.xy);
     vec2 azimuth = sin_h > 1e-7 ? h.xy / sin_h : vec2(1.0, 0.0);  // (cos, sin) of phi_h
     vec3 r = vec3(azimuth.x * l.x + azimuth.y * l.y, -azimuth.y * l.x + azimuth.x * l.y, l.z);
     vec3 d = vec3(h.z * r.x - sin_h * r.z, r.y, sin_h * r.x + h.z * r.z);
-    float theta_d = acos(clamp(d.z, -1.0, 1.0));
+    float theta_d = atan(length(d.xy), d.z);
     float phi_d = length(d.xy) > 1e-7 ? atan(d.y, d.x) : 0.0;
     if (phi_d < 0.0) phi_d += PI;  // phi_d and phi_d + pi: L and V swapped
     ivec3 size = textureSize(u_measured, 0);  // (n_p, n_d, n_h)
