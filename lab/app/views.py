@@ -146,6 +146,7 @@ class SphereView(View):
         self.canvas = ImageRow(self.drag_light)
         self.layout_.addWidget(self.canvas, 1)
         self.floats: list[tuple[ModelState, np.ndarray]] = []
+        self.toned: dict[int, tuple] = {}  # (image, (exposure, gamma), QImage): tone-map once
 
     def drag_light(self, x: float, y: float) -> None:
         r = math.hypot(x, y)
@@ -174,7 +175,12 @@ class SphereView(View):
             if image is None:
                 continue
             self.floats.append((state, image))
-            images.append((tonemap(image, s["exposure"], s["gamma"]), state.label, state.color))
+            known = self.toned.get(id(state))
+            tone = (s["exposure"], s["gamma"])
+            if known is None or known[0] is not image or known[1] != tone:
+                known = (image, tone, tonemap(image, *tone))
+                self.toned[id(state)] = known
+            images.append((known[2], state.label, state.color))
         self.canvas.images = images
         self.canvas.update()
         return size < self.size_for(False)
@@ -204,6 +210,21 @@ class PolarView(View):
         self.plot.setMouseEnabled(False, False)
         self.layout_.addWidget(self.plot, 1)
         self.data: list[tuple[ModelState, object]] = []
+        # Fixed items are made once; curves are reused (re-creating items costs milliseconds).
+        angle = np.radians(np.linspace(-90, 90, 91))
+        grid = pg.mkPen((90, 90, 90), style=Qt.PenStyle.DotLine)
+        for r in (0.25, 0.5, 0.75, 1.0):
+            self.plot.plot(r * np.sin(angle), r * np.cos(angle), pen=grid)
+        self.plot.plot([-1.05, 1.05], [0, 0], pen=pg.mkPen((150, 150, 150)))
+        self.marks = []
+        for label, color in (("normal", (200, 200, 200)), ("incident", (255, 210, 0)),
+                             ("mirror", (120, 200, 255))):
+            line = self.plot.plot(pen=pg.mkPen(color, width=1, style=Qt.PenStyle.DashLine))
+            text = pg.TextItem(label, color=color, anchor=(0.5, 1.0))
+            self.plot.addItem(text)
+            self.marks.append((line, text))
+        self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
+        self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.1, 1.2), padding=0)
 
     def radius(self, values: np.ndarray, peak: float) -> np.ndarray:
         if self.lab.settings["polar_log"]:
@@ -221,37 +242,32 @@ class PolarView(View):
                 st.model, st.values, theta_i, phi_i, cos_weighted=cos))
             if polar is not None:
                 self.data.append((state, polar))
-        self.plot.clear()
         lum = [(st, p, p.values.astype(np.float64) @ LUMA) for st, p in self.data]
         # Grazing directions are left out of the scale: some models (Ward) diverge there.
         peaks = [finite_max(v[np.abs(p.theta_o) <= 87.0]) for _, p, v in lum]
         peaks += [float(np.asarray(p.spike) @ LUMA) for _, p, _ in lum if p.spike is not None]
         peak = max([x for x in peaks if np.isfinite(x)] + [1e-12])
-        # Half-disc grid: circles at quarters of the largest value.
-        angle = np.radians(np.linspace(-90, 90, 91))
-        grid = pg.mkPen((90, 90, 90), style=Qt.PenStyle.DotLine)
-        for r in (0.25, 0.5, 0.75, 1.0):
-            self.plot.plot(r * np.sin(angle), r * np.cos(angle), pen=grid)
-        self.plot.plot([-1.05, 1.05], [0, 0], pen=pg.mkPen((150, 150, 150)))
         ti = math.radians(theta_i)
-        marks = (("normal", 0.0, (200, 200, 200)), ("incident", -ti, (255, 210, 0)),
-                 ("mirror", ti, (120, 200, 255)))
-        for label, a, color in marks:
-            pen = pg.mkPen(color, width=1, style=Qt.PenStyle.DashLine)
-            self.plot.plot([0, 1.05 * math.sin(a)], [0, 1.05 * math.cos(a)], pen=pen)
-            text = pg.TextItem(label, color=color, anchor=(0.5, 1.0))
+        for (line, text), a in zip(self.marks, (0.0, -ti, ti), strict=True):
+            line.setData([0, 1.05 * math.sin(a)], [0, 1.05 * math.cos(a)])
             text.setPos(1.1 * math.sin(a), 1.1 * math.cos(a))
-            self.plot.addItem(text)
-        for state, polar, values in lum:
+        while len(self.curves) < len(lum):
+            self.curves.append((self.plot.plot(), self.plot.plot()))
+        for index, (curve, spike) in enumerate(self.curves):
+            if index >= len(lum):
+                curve.setData([], [])
+                spike.setData([], [])
+                continue
+            state, polar, values = lum[index]
             r = np.minimum(np.nan_to_num(self.radius(values, peak), posinf=1.3), 1.3)
             a = np.radians(polar.theta_o)
-            self.plot.plot(r * np.sin(a), r * np.cos(a), pen=pg.mkPen(state.color, width=2),
-                           name=state.label)
+            curve.setData(r * np.sin(a), r * np.cos(a), pen=pg.mkPen(state.color, width=2))
             if polar.spike is not None:
                 h = float(self.radius(np.array([float(np.asarray(polar.spike) @ LUMA)]), peak)[0])
-                self.plot.plot([0, h * math.sin(ti)], [0, h * math.cos(ti)],
-                               pen=pg.mkPen(state.color, width=4))
-        self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.1, 1.2), padding=0)
+                spike.setData([0, h * math.sin(ti)], [0, h * math.cos(ti)],
+                              pen=pg.mkPen(state.color, width=4))
+            else:
+                spike.setData([], [])
         return False
 
     def curve(self, state: ModelState) -> tuple[np.ndarray, np.ndarray] | None:
@@ -294,6 +310,7 @@ class LobeCanvas(QWidget):
         super().__init__()
         self.view = view
         self.lines: list[tuple[list, str]] = []
+        self.paths: list[tuple[object, str]] = []
         self.marks: list[tuple[np.ndarray, tuple]] = []
         self.last = None
         self.setMinimumSize(160, 160)
@@ -312,7 +329,14 @@ class LobeCanvas(QWidget):
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor(*BACKGROUND))
-        painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, not self.view.fast)
+        # One path per model from numpy arrays: building QPointF lists would cost milliseconds.
+        self.paths = []
+        for polylines, color in self.lines:
+            screen = [self.project(line) for line in polylines]
+            xy = np.concatenate(screen)
+            connect = np.concatenate([np.r_[np.ones(len(p) - 1, bool), False] for p in screen])
+            self.paths.append((pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect), color))
         ring = np.radians(np.linspace(0, 360, 73))
         disc = np.stack([np.cos(ring), np.sin(ring), 0 * ring], axis=-1)
         painter.setPen(QPen(QColor(110, 110, 110), 1))
@@ -321,12 +345,11 @@ class LobeCanvas(QWidget):
             ends = self.project(np.array([[0.0, 0.0, 0.0], direction * 1.1]))
             painter.setPen(QPen(QColor(*color), 1.5, Qt.PenStyle.DashLine))
             painter.drawLine(QPointF(*ends[0]), QPointF(*ends[1]))
-        for polylines, color in self.lines:
+        for path, color in self.paths:
             qcolor = QColor(color)
             qcolor.setAlpha(170)
             painter.setPen(QPen(qcolor, 1))
-            for line in polylines:
-                painter.drawPolyline([QPointF(*p) for p in self.project(line)])
+            painter.drawPath(path)
         painter.end()
 
     def mousePressEvent(self, event) -> None:
@@ -356,6 +379,7 @@ class LobeView(View):
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
         self.tools.addWidget(QLabel("drag to rotate, wheel to zoom; scale as the polar plot"))
+        self.fast = False
         self.canvas = LobeCanvas(self)
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, tuple]] = []
@@ -366,6 +390,7 @@ class LobeView(View):
         s = self.lab.settings
         theta_i, phi_i = s["theta_i"], s["phi_i"]
         grid = (16, 37) if fast else (31, 73)
+        self.fast = fast
         self.data = []
         for state in self.lab.visible_models():
             key = state_key(state, theta_i, phi_i, grid)
@@ -453,7 +478,8 @@ class SliceView(View):
             rgb = np.clip(np.nan_to_num(image[::-1]) * scale, 0.0, 1.0) ** (1.0 / s["gamma"])
             item.setImage((rgb * 255).astype(np.uint8), levels=(0, 255))
             item.setRect(QRectF(0, 0, 90, 90))
-            plot.setTitle(state.label, color=state.color)
+            if plot.titleLabel.text != state.label:
+                plot.setTitle(state.label, color=state.color)
         return fast
 
 
@@ -473,6 +499,10 @@ class AlbedoView(View):
         self.plot.setMouseEnabled(False, False)
         self.layout_.addWidget(self.plot, 1)
         self.data: list[tuple[ModelState, np.ndarray, np.ndarray]] = []
+        self.plot.addItem(pg.InfiniteLine(pos=1.0, angle=0, pen=pg.mkPen(
+            (220, 220, 220), style=Qt.PenStyle.DashLine), label="albedo = 1"))
+        self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
+        self.top = 0.0
 
     def redraw(self, fast: bool = False) -> bool:
         phi_i = self.lab.settings["phi_i"]
@@ -492,19 +522,26 @@ class AlbedoView(View):
                 refine = refine or fast
             if result is not None:
                 self.data.append((state, result[0], result[1].max(axis=1)))
-        self.plot.clear()
-        self.plot.addItem(pg.InfiniteLine(pos=1.0, angle=0, pen=pg.mkPen(
-            (220, 220, 220), style=Qt.PenStyle.DashLine), label="albedo = 1"))
+        while len(self.curves) < len(self.data):
+            gain_marks = self.plot.plot(pen=None, symbol="x", symbolBrush=None,
+                                        symbolPen=pg.mkPen((255, 60, 60), width=2))
+            self.curves.append((self.plot.plot(), gain_marks))
         gain = []
-        for state, thetas_, albedo in self.data:
-            self.plot.plot(thetas_, albedo, pen=pg.mkPen(state.color, width=2), name=state.label)
+        for index, (curve, marks) in enumerate(self.curves):
+            if index >= len(self.data):
+                curve.setData([], [])
+                marks.setData([], [])
+                continue
+            state, thetas_, albedo = self.data[index]
+            curve.setData(thetas_, albedo, pen=pg.mkPen(state.color, width=2))
             over = albedo > 1.0 + 1e-3
+            marks.setData(thetas_[over], albedo[over])
             if over.any():
                 gain.append(state.label)
-                self.plot.plot(thetas_[over], albedo[over], pen=None, symbol="x",
-                               symbolPen=pg.mkPen((255, 60, 60), width=2), symbolBrush=None)
         top = max([finite_max(a) for _, _, a in self.data] + [1.0])
-        self.plot.setRange(xRange=(0, 90), yRange=(0, top * 1.1), padding=0.02)
+        if top != self.top:
+            self.top = top
+            self.plot.setRange(xRange=(0, 90), yRange=(0, top * 1.1), padding=0.02)
         if gain:
             self.note.setText("<span style='color:#ff5050'>energy gain (albedo > 1): "
                               + ", ".join(gain) + "</span>")
