@@ -1,0 +1,99 @@
+"""Grading speed: latency of one exercise in a fresh process, and grade-all throughput."""
+
+from __future__ import annotations
+
+import random
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from lab.grading.exercise import find_exercises
+
+ROOT = Path(__file__).resolve().parents[2]
+MAIN = "import sys; from lab.cli import main; sys.exit(main(sys.argv[1:]))"
+BARE = "import moderngl; moderngl.create_context(standalone=True, backend='egl')"
+
+# Wrong answers a student might hand in, as (text in the solution, replacement).
+WRONG = [("INV_PI", "1.0"), ("normalize(L + V)", "(L + V)"), ("NoL", "NoV"), ("0.5", "0.25")]
+BROKEN = ["", "vec3 BRDF(vec3 L) { return L }\n", "// @model x\nfloat f() { return 1.0; }\n"]
+
+
+def _seconds(command: list[str], repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        subprocess.run(command, cwd=ROOT, capture_output=True, check=False)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def make_class(folder: Path, students: int, seed: int = 1) -> dict[str, int]:
+    """Submissions for `students` students: about half correct, 30 % wrong, 20 % broken."""
+    rng = random.Random(seed)
+    counts = {"correct": 0, "wrong": 0, "broken": 0}
+    exercises = find_exercises(ROOT / "exercises")
+    for number in range(students):
+        for exercise in exercises:
+            text = exercise.solution.read_text(encoding="utf-8")
+            roll = rng.random()
+            if roll < 0.5:
+                kind = "correct"
+            elif roll < 0.8:
+                old, new = rng.choice([w for w in WRONG if w[0] in text] or [("", "")])
+                text, kind = text.replace(old, new) if old else text + "\n#error\n", "wrong"
+            else:
+                text, kind = rng.choice(BROKEN), "broken"
+            counts[kind] += 1
+            path = folder / f"student{number:03d}" / exercise.name / exercise.student_file
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(text, encoding="utf-8")
+    return counts
+
+
+def run(submissions: int = 100, workers: int = 2, repeat: int = 5) -> None:
+    """Print the figures the issue asks for."""
+    lambert = ROOT / "exercises" / "01_lambert"
+    solution = ROOT / "solutions" / "01_lambert" / "lambert.glsl"
+    bare = _seconds([sys.executable, "-c", BARE], repeat)
+    grade = [sys.executable, "-c", MAIN, "grade", str(lambert), "--submission", str(solution)]
+    one = _seconds(grade, repeat)
+    every = _seconds([*grade[:4], str(ROOT / "exercises"), "--from", str(ROOT / "solutions")], 3)
+    print(f"bare python + moderngl context:          {bare:6.3f} s")
+    print(f"grade one exercise (01_lambert):          {one:6.3f} s  (+{one - bare:.3f} s)")
+    print(f"grade all 9 exercises of one student:     {every:6.3f} s  (+{every - bare:.3f} s)")
+    folder = Path(tempfile.mkdtemp(prefix="brdf-grade-bench-"))
+    try:
+        counts = make_class(folder / "class", submissions)
+        start = time.perf_counter()
+        subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                MAIN,
+                "grade-all",
+                str(folder / "class"),
+                "--exercises",
+                str(ROOT / "exercises"),
+                "--out",
+                str(folder / "grades"),
+                "--workers",
+                str(workers),
+            ],
+            cwd=ROOT,
+            capture_output=True,
+            check=False,
+        )
+        seconds = time.perf_counter() - start
+        gradebook = (folder / "grades" / "gradebook.csv").read_text().splitlines()
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    n = submissions * 9
+    print(
+        f"grade-all {submissions} students x 9 exercises ({counts['correct']} correct, "
+        f"{counts['wrong']} wrong, {counts['broken']} broken files), {workers} workers: "
+        f"{seconds:.1f} s ({n / seconds:.0f} files/s); gradebook rows: {len(gradebook) - 1}"
+    )
