@@ -1,0 +1,148 @@
+"""`brdf-lab watch FILE.glsl`: a small GLFW window for students editing a shader.
+
+Shows the lit sphere and the polar lobe of their model, reloads on save, prints compile
+errors with the file's line numbers (the last good version stays on screen) and, when the
+file sits in an exercise folder with a reference image (references/*sphere*.png), shows
+the reference and the difference beside it.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from lab.glsl import ShaderCompileError
+from lab.models import ModelError
+
+PANEL = 320
+QUAD = """
+#version 330 core
+uniform sampler2D u_image;
+uniform vec4 u_rect;  // x, y, width, height in normalised device coordinates
+out vec2 uv;
+void main() {
+    vec2 corner = vec2(float(gl_VertexID & 1), float((gl_VertexID >> 1) & 1));
+    uv = vec2(corner.x, 1.0 - corner.y);
+    gl_Position = vec4(u_rect.xy + corner * u_rect.zw, 0.0, 1.0);
+}
+"""
+QUAD_FRAGMENT = """
+#version 330 core
+uniform sampler2D u_image;
+in vec2 uv;
+out vec4 color;
+void main() { color = texture(u_image, uv); }
+"""
+
+
+def find_reference(path: Path) -> Path | None:
+    """The exercise's reference sphere image, if the file belongs to an exercise."""
+    for folder in (path.parent, path.parent.parent):
+        for pattern in ("references/*sphere*.png", "reference*/*.png", "*reference*sphere*.png"):
+            found = sorted(folder.glob(pattern))
+            if found:
+                return found[0]
+    return None
+
+
+def polar_image(renderer, model, values, theta: float, phi: float) -> np.ndarray:
+    """The polar lobe as an RGBA uint8 image (matplotlib), PANEL x PANEL."""
+    from lab import plots
+
+    fig, ax = plots._figure(polar=True)
+    fig.set_size_inches(PANEL / 100, PANEL / 100)
+    fig.set_dpi(100)
+    plots.polar_axes(ax, renderer.polar(model, values, theta, phi), model.name, "tab:red")
+    plots.style_polar(ax, theta, "f_r")
+    fig.tight_layout()
+    fig.canvas.draw()
+    image = np.asarray(fig.canvas.buffer_rgba()).copy()
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    return image
+
+
+def load_rgba(path: Path, size: int) -> np.ndarray:
+    from PIL import Image
+
+    return np.asarray(Image.open(path).convert("RGBA").resize((size, size)))
+
+
+def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
+    """Run the viewer until the window closes (or `frames` frames, for tests)."""
+    import glfw
+
+    from lab import plots
+    from lab.app.state import load_any
+    from lab.gl import get_context
+    from lab.render import Renderer
+
+    if not glfw.init():
+        print("brdf-lab: cannot open a GLFW window (no display?)", file=sys.stderr)
+        return 2
+    reference_path = find_reference(path.resolve())
+    panels = 4 if reference_path else 2
+    glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
+    glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
+    glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
+    glfw.window_hint(glfw.OPENGL_FORWARD_COMPAT, True)
+    window = glfw.create_window(PANEL * panels, PANEL, f"brdf-lab watch {path.name}", None, None)
+    if not window:
+        glfw.terminate()
+        print("brdf-lab: cannot open a GLFW window with OpenGL 3.3", file=sys.stderr)
+        return 2
+    glfw.make_context_current(window)
+    ctx = get_context(window=True)
+    renderer = Renderer(ctx)
+    quad = ctx.program(vertex_shader=QUAD.strip(), fragment_shader=QUAD_FRAGMENT.strip())
+    vao = ctx.vertex_array(quad, [])
+    textures: list = []
+    reference = load_rgba(reference_path, PANEL) if reference_path else None
+    mtime = -1.0
+    shown = 0
+    print(f"watching {path} (save the file to reload; close the window to stop)")
+    if reference_path:
+        print(f"reference image: {reference_path}")
+    while not glfw.window_should_close(window):
+        stamp = path.stat().st_mtime if path.exists() else mtime
+        if stamp != mtime:
+            mtime = stamp
+            try:
+                model = load_any(path)
+                values = model.defaults()
+                sphere = renderer.sphere(model, values, light, size=PANEL)
+                images = [np.dstack([plots.to_srgb8(sphere[..., :3]),
+                                     (sphere[..., 3:] * 255).astype(np.uint8)]),
+                          polar_image(renderer, model, values, *light)]
+                if reference is not None:
+                    diff = np.abs(images[0][..., :3].astype(int) - reference[..., :3].astype(int))
+                    diff = np.clip(diff * 4, 0, 255).astype(np.uint8)
+                    images += [reference, np.dstack([diff, np.full(diff.shape[:2], 255, np.uint8)])]
+                for texture in textures:
+                    texture.release()
+                textures = []
+                for image in images:
+                    rgba = np.ascontiguousarray(image[..., :4])
+                    textures.append(ctx.texture((rgba.shape[1], rgba.shape[0]), 4, rgba.tobytes()))
+                print(f"{time.strftime('%H:%M:%S')} compiled {path.name}: OK")
+            except (ModelError, ShaderCompileError) as err:
+                print(f"{time.strftime('%H:%M:%S')} {path.name} does not compile; "
+                      f"showing the last good version:\n{err}", flush=True)
+        ctx.screen.use()
+        ctx.clear(0.16, 0.16, 0.17)
+        width = 2.0 / panels
+        for index, texture in enumerate(textures):
+            texture.use(0)
+            quad["u_rect"].value = (-1.0 + index * width, -1.0, width, 2.0)
+            vao.render(mode=5, vertices=4)  # triangle strip
+        glfw.swap_buffers(window)
+        glfw.wait_events_timeout(0.25)
+        shown += 1
+        if frames and shown >= frames:
+            break
+    glfw.terminate()
+    return 0
