@@ -96,7 +96,7 @@ def cmd_slides_pdf(args) -> int:
     try:
         if not (deck / "index.html").is_file():
             slides.build(deck)
-        slides.pdf(deck, output)
+        slides.pdf_or_error(deck, output)
     except (slides.SlidesError, BrowserMissing) as err:
         raise _usage_error(str(err)) from None
     print(f"wrote {output}")

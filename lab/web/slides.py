@@ -1,0 +1,119 @@
+"""The lecture deck: `brdf-lab slides build` and `brdf-lab slides pdf`.
+
+The deck's Markdown lives in slides/lecture.md; slides/build.mjs turns it into a reveal.js
+page (equations by KaTeX at build time). reveal.js, KaTeX and marked come from npm with the
+committed lockfile (`npm ci`); they are copied into the built deck, never into the repo.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+from lab.web.site import export, serving
+
+SLIDES_DIR = Path(__file__).resolve().parents[2] / "slides"
+
+
+class SlidesError(RuntimeError):
+    """The deck cannot be built or printed (one line, says what to do)."""
+
+
+def _run(command: list[str], what: str, timeout: float = 300) -> str:
+    try:
+        result = subprocess.run(command, cwd=SLIDES_DIR, capture_output=True, text=True,
+                                timeout=timeout)
+    except FileNotFoundError:
+        raise SlidesError(f"{command[0]} is not installed: apt-get install nodejs npm") from None
+    except subprocess.TimeoutExpired:
+        raise SlidesError(f"{what} took longer than {timeout:.0f} s") from None
+    if result.returncode != 0:
+        lines = [ln for ln in (result.stderr or result.stdout).splitlines() if ln.strip()]
+        detail = lines[-1] if lines else f"exit status {result.returncode}"
+        raise SlidesError(f"{what} failed: {detail}")
+    return result.stdout
+
+
+def install() -> None:
+    """`npm ci` in slides/ unless node_modules already matches the lockfile."""
+    lock = SLIDES_DIR / "package-lock.json"
+    installed = SLIDES_DIR / "node_modules" / ".package-lock.json"
+    if installed.is_file() and installed.stat().st_mtime >= lock.stat().st_mtime:
+        return
+    _run(["npm", "ci", "--prefer-offline", "--no-audit", "--no-fund"], "npm ci in slides/")
+
+
+def build(outdir: Path, figures: bool = True) -> Path:
+    """Build the deck into `outdir`; returns its index.html."""
+    for tool in ("node", "npm"):
+        if shutil.which(tool) is None:
+            raise SlidesError(f"{tool} is not installed: apt-get install nodejs npm")
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise SlidesError(f"cannot create {outdir}: {err.strerror}") from None
+    install()
+    if figures:
+        from lab.figures import lecture_figures
+
+        lecture_figures(outdir / "figures")
+    export(outdir / "lab")  # the live demos' iframes load the web lab from here
+    _run(["node", str(SLIDES_DIR / "build.mjs"), str(outdir.resolve())], "building the deck")
+    return outdir / "index.html"
+
+
+def deck_info(deck: Path) -> dict:
+    """What build.mjs wrote about the deck: slide count, demos, figures."""
+    return json.loads((deck / "deck.json").read_text(encoding="utf-8"))
+
+
+def pdf(deck: Path, output: Path, browser=None) -> Path:
+    """Print the built deck to a PDF (reveal.js print layout, one slide per page).
+
+    `browser`: an already launched Playwright browser to use (one per thread at a time).
+    """
+    if not (deck / "index.html").is_file():
+        raise SlidesError(f"{deck} holds no deck: run 'brdf-lab slides build {deck}' first")
+    if output.parent and not output.parent.is_dir():
+        raise SlidesError(f"cannot write {output}: folder {output.parent} does not exist")
+    with serving(deck) as url, _browser(browser) as browser:
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        page.goto(f"{url}index.html?print-pdf", wait_until="networkidle")
+        page.wait_for_function("window.Reveal && Reveal.isReady()")
+        # Load every demo (reveal loads them lazily) and let each render before printing.
+        page.evaluate("document.querySelectorAll('iframe.demo').forEach(f => {"
+                      " if (!f.src) f.src = f.dataset.src; })")
+        page.wait_for_function(
+            "[...document.querySelectorAll('iframe.demo')].every(f => "
+            "f.contentWindow && f.contentWindow.brdfLab && "
+            "f.contentWindow.brdfLab.state.firstRenderMs !== null)",
+            timeout=60_000,
+        )
+        page.pdf(path=str(output), width="1280px", height="800px", print_background=True)
+        page.close()
+    return output
+
+
+@contextlib.contextmanager
+def _browser(browser=None):
+    from lab.web.browser import chromium
+
+    if browser is not None:
+        yield browser
+        return
+    with chromium() as launched:
+        yield launched
+
+
+def pdf_or_error(deck: Path, output: Path) -> Path:
+    """pdf(), with the browser's time-outs turned into a SlidesError."""
+    from playwright.sync_api import Error as PlaywrightError
+
+    try:
+        return pdf(deck, output)
+    except PlaywrightError as err:
+        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        raise SlidesError(f"printing the deck failed: {first}") from None
