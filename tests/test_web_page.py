@@ -188,3 +188,28 @@ def test_errors_name_the_model_file_and_line(lab_page):
     assert lab_page.errors == []
     lab_page.js(f"() => {{ while (brdfLab.state.panels.length > {count}) "
                 "brdfLab.state.panels.pop().root.remove(); }")
+
+
+def test_live_server_serves_page_manifest_and_shaders():
+    """`brdf-lab serve` maps /shaders/ to the live shader folder and makes the manifest."""
+    from urllib.request import urlopen
+
+    from lab.models import SHADER_DIR
+    from lab.web.site import serving
+
+    with serving() as url:
+        manifest = json.loads(urlopen(url + "manifest.json").read())
+        assert manifest["models"] == model_names()
+        phong = urlopen(url + "shaders/brdfs/phong.glsl").read().decode()
+        assert phong == (SHADER_DIR / "brdfs" / "phong.glsl").read_text()
+        assert b"lab.js" in urlopen(url + "index.html").read()
+
+
+def test_export_into_a_file_is_a_one_line_error(tmp_path, capsys):
+    from lab.cli import main
+
+    target = tmp_path / "taken"
+    target.write_text("x")
+    assert main(["web-export", str(target)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "is a file" in err
