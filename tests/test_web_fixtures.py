@@ -60,7 +60,7 @@ def _library_programs() -> dict:
         enum_params = [p for p in model.params.values() if p.kind == "enum"]
         combos = itertools.product(*[p.choices for p in enum_params]) if enum_params else [()]
         for combo in combos:
-            enums = {p.name: c for p, c in zip(enum_params, combo)}
+            enums = {p.name: c for p, c in zip(enum_params, combo, strict=True)}
             tag = ",".join(f"{k}={v}" for k, v in enums.items())
             for view in ("sphere", "probe"):
                 source = glsl.assemble_fragment(model, view, target="300es", enums=enums)
