@@ -8,7 +8,7 @@ import importlib
 import sys
 from pathlib import Path
 
-from lab.models import ModelError
+from lab.models import MODEL_DIR, ModelError
 
 # Feature packages add their own sub-commands through a `register(subparsers)` function.
 FEATURE_CLIS = ["lab.app.cli", "lab.grading.cli", "lab.web.cli", "lab.measured.cli"]
@@ -154,6 +154,11 @@ def cmd_eval(args) -> int:
     if args.cpu:
         from lab import reference
 
+        if model.name not in reference.MODELS or model.path.parent != MODEL_DIR:
+            raise UsageError(
+                f"--cpu: the numpy reference knows only the library models "
+                f"({', '.join(reference.MODELS)}); drop --cpu to evaluate {model.path} on the GPU"
+            )
         result = reference.brdf_angles(model.name, values, angles)
     else:
         from lab.render import Renderer

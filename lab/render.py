@@ -14,6 +14,8 @@ import moderngl
 import numpy as np
 
 from lab import glsl
+from lab.brdf_explorer import ExplorerModel, glsl_version
+from lab.brdf_explorer import assemble as assemble_explorer
 from lab.gl import get_context
 from lab.models import Model, Value, load_model
 
@@ -81,17 +83,28 @@ class Renderer:
         key = (str(model.path), model.code, view, tuple(sorted(enums.items())), preamble)
         program = self._programs.get(key)
         if program is None:
-            source = glsl.assemble_fragment(model, view, preamble=preamble, enums=enums)
+            vertex, source = self._assemble(model, view, enums, preamble)
             try:
-                program = self.ctx.program(
-                    vertex_shader=glsl.vertex_source(), fragment_shader=source.text
-                )
+                program = self.ctx.program(vertex_shader=vertex, fragment_shader=source.text)
             except moderngl.Error as err:
                 log = str(err)
                 raise glsl.ShaderCompileError(glsl.translate_log(log, source), log) from None
             self._programs[key] = program
             self._vaos[id(program)] = self.ctx.vertex_array(program, [])
         return program
+
+    def _assemble(self, model: Model, view: str, enums: dict, preamble: str):
+        """Vertex shader text and fragment Source for `model` in `view`.
+
+        BRDF Explorer files were written for GLSL 4.10 and lean on its implicit int-to-float
+        conversions, so they get the highest version the context offers.
+        """
+        if isinstance(model, ExplorerModel):
+            version = glsl_version(self.ctx)
+            source = assemble_explorer(model, view, version, preamble, enums)
+            return f"#version {version} core\n" + glsl.VERTEX_SHADER, source
+        source = glsl.assemble_fragment(model, view, preamble=preamble, enums=enums)
+        return glsl.vertex_source(), source
 
     def target(self, width: int, height: int) -> moderngl.Framebuffer:
         fbo = self._targets.get((width, height))

@@ -153,6 +153,51 @@ def test_figures_command_writes_the_lecture_figures(tmp_path):
     assert sun[c, c] - sun[c, int(c * 1.9)] > 30
 
 
+BRDF_EXPLORER_FILE = """analytic
+# written in BRDF Explorer's format: int literals where floats are meant, its own PI
+::begin parameters
+float n 1 1000 20
+color tint 1 .5 .25
+::end parameters
+::begin shader
+const float PI = 3.14159265358979;
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    vec3 H = normalize(L + V);
+    return tint * (n + 2) / (2 * PI) * pow(max(dot(N, H), 0), n);
+}
+::end shader
+"""
+
+
+def test_render_and_eval_a_brdf_explorer_file(tmp_path):
+    path = tmp_path / "lobe.brdf"
+    path.write_text(BRDF_EXPLORER_FILE)
+    out = tmp_path / "lobe.png"
+    args = [
+        "render",
+        str(path),
+        "--set",
+        "n=50",
+        "--size",
+        "96",
+        "--exposure",
+        "-4",
+        "-o",
+        str(out),
+    ]
+    assert main(args) == 0
+    image = np.asarray(Image.open(out).convert("RGB"), dtype=np.float64)
+    assert image[..., 0].max() > 1.5 * image[..., 2].max() > 0  # the tint colours the highlight
+    pairs = write_pairs(tmp_path / "p.csv", [[30, 0, 30, 180], [30, 0, 60, 180]])
+    values = tmp_path / "v.csv"
+    assert main(["eval", str(path), "--set", "n=50", "--in", str(pairs), "--out", str(values)]) == 0
+    got = read_values(values)
+    cos_h = np.cos(np.radians([0.0, 15.0]))
+    expected = 52 / (2 * np.pi) * cos_h**50
+    np.testing.assert_allclose(got[:, 0], expected, rtol=1e-4)
+    np.testing.assert_allclose(got[:, 2], 0.25 * expected, rtol=1e-4)
+
+
 BAD_INPUTS = [
     (["render", "phongg", "-o", "{tmp}/x.png"], "unknown model 'phongg'"),
     (["render", "phong", "--set", "shininess=3", "-o", "{tmp}/x.png"], "no parameter 'shininess'"),

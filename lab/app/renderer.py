@@ -1,14 +1,12 @@
-"""The app's renderer: the core Renderer plus .brdf files and the procedural object view."""
+"""The app's renderer: the core Renderer plus the procedural object view."""
 
 from __future__ import annotations
 
 import re
 
-import moderngl
 import numpy as np
 
 from lab import glsl
-from lab.brdf_explorer import ExplorerModel, assemble, glsl_version
 from lab.models import Model
 from lab.render import MAX_LIGHTS, Light, Renderer, direction
 
@@ -54,33 +52,13 @@ def spatially_varying(source: glsl.Source, model: Model) -> None:
 
 
 class AppRenderer(Renderer):
-    """Compiles .brdf models with the context's highest GLSL version; adds `object`."""
+    """Adds the `object` view, whose parameters vary over the surface."""
 
-    def program(self, model: Model, view: str, enums: dict | None = None, preamble: str = ""):
-        explorer = isinstance(model, ExplorerModel)
-        if not explorer and view != "object":
-            return super().program(model, view, enums, preamble)
-        enums = enums or {}
-        version = glsl_version(self.ctx)
-        key = (str(model.path), model.code, view, tuple(sorted(enums.items())), preamble, explorer)
-        program = self._programs.get(key)
-        if program is None:
-            if explorer:
-                source = assemble(model, view, version, preamble, enums)
-                vertex = f"#version {version} core\n" + glsl.VERTEX_SHADER
-            else:
-                source = glsl.assemble_fragment(model, view, preamble=preamble, enums=enums)
-                vertex = glsl.vertex_source()
-            if view == "object":
-                spatially_varying(source, model)
-            try:
-                program = self.ctx.program(vertex_shader=vertex, fragment_shader=source.text)
-            except moderngl.Error as err:
-                log = str(err)
-                raise glsl.ShaderCompileError(glsl.translate_log(log, source), log) from None
-            self._programs[key] = program
-            self._vaos[id(program)] = self.ctx.vertex_array(program, [])
-        return program
+    def _assemble(self, model: Model, view: str, enums: dict, preamble: str):
+        vertex, source = super()._assemble(model, view, enums, preamble)
+        if view == "object":
+            spatially_varying(source, model)
+        return vertex, source
 
     def forget(self, model: Model) -> None:
         """Release the programs compiled for an older version of a model file."""
@@ -110,17 +88,19 @@ class AppRenderer(Renderer):
             for name, value in glsl.uniform_values(model, resolved).items()
             if model.params[name].kind in ("float", "color")
         }
-        uniforms.update({
-            "u_resolution": (float(size), float(size)),
-            "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
-            + [(0.0, 0.0, 1.0)] * pad,
-            "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
-            "u_ambient": tuple(ambient),
-            "u_shape": int(shape),
-            "u_mode": int(mode),
-            "u_yaw": float(yaw),
-            "u_pitch": float(pitch),
-        })
+        uniforms.update(
+            {
+                "u_resolution": (float(size), float(size)),
+                "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
+                + [(0.0, 0.0, 1.0)] * pad,
+                "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
+                "u_ambient": tuple(ambient),
+                "u_shape": int(shape),
+                "u_mode": int(mode),
+                "u_yaw": float(yaw),
+                "u_pitch": float(pitch),
+            }
+        )
         preamble = f"const int LIGHT_COUNT = {len(lights)};"
         fbo = self._run(model, "object", resolved, (size, size), uniforms, preamble)
         return self._read(fbo)[::-1].copy()
