@@ -110,6 +110,7 @@ def main(argv: list[str]) -> int:
     ensure_venv(with_tests=testing)
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     if testing:
+        env["BRDF_LAB_STRICT"] = "1"  # a skipped test would hide a missing install
         command = [str(venv_python()), "-m", "pytest", *argv[1:]]
         if not os.environ.get("DISPLAY") and shutil.which("xvfb-run"):
             command = ["xvfb-run", "-a", "-s", "-screen 0 1920x1080x24", *command]

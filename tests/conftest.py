@@ -2,11 +2,36 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
 
 OUTPUT = Path(__file__).parent / "output"
+
+# `python3 -m lab test` (and so CI) sets this: there every tool is installed, and a test
+# skipped for a missing display, browser or node would hide a broken set-up.
+STRICT = os.environ.get("BRDF_LAB_STRICT") == "1"
+
+
+def _no_skips(report) -> None:
+    if STRICT and report.skipped and not hasattr(report, "wasxfail"):
+        report.outcome = "failed"
+        report.longrepr = (
+            f"skipped, but BRDF_LAB_STRICT=1 requires every test to run: {report.longrepr}"
+        )
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    _no_skips(outcome.get_result())
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_make_collect_report(collector):
+    outcome = yield
+    _no_skips(outcome.get_result())
 
 
 @pytest.fixture(scope="session")
