@@ -229,3 +229,21 @@ def test_classroom_workflow_template_runs_the_grader_and_reporter():
     assert "brdf-lab grade exercises/" in text
     assert "classroom-resources/autograding-grading-reporter@v1" in text
     assert "BRDF-LAB_RESULTS" in text and "steps.brdf-lab.outputs.result" in text
+
+
+def test_usage_error_still_writes_the_result_files(tmp_path):
+    """Gradescope shows the reason instead of 'the autograder produced no results'."""
+    results, classroom = tmp_path / "results.json", tmp_path / "classroom.json"
+    result = run_cli(
+        "grade",
+        str(tmp_path / "no_such_exercise"),
+        "--json",
+        str(results),
+        "--classroom",
+        str(classroom),
+    )
+    assert result.returncode == 2
+    assert "no exercise.toml" in result.stderr and "Traceback" not in result.stderr
+    gradescope = json.loads(results.read_text())
+    assert gradescope["score"] == 0 and "no exercise.toml" in gradescope["output"]
+    assert json.loads(classroom.read_text())["status"] == "error"
