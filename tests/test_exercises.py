@@ -94,9 +94,15 @@ MISTAKES = [
     ),
     (
         "06_microfacet_distributions",
+        "Gaussian normaliser by a coarse midpoint rule over [0, pi/2]",
+        "float top = min(0.5 * PI, 6.0 * beta);",
+        "float top = 0.5 * PI;",
+    ),
+    (
+        "06_microfacet_distributions",
         "degrees for radians",
-        "float alpha = acos(clamp(NoH, -1.0, 1.0));",
-        "float alpha = degrees(acos(clamp(NoH, -1.0, 1.0)));",
+        "float alpha = angle_from_cos(NoH);",
+        "float alpha = degrees(angle_from_cos(NoH));",
     ),
     (
         "07_geometric_attenuation",

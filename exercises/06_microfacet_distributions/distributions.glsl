@@ -18,8 +18,8 @@ float D_blinn(float NoH, float beta) {
 
 // Gaussian: g(alpha) = exp(-ln 2 (alpha / beta)^2), so g(beta) = 1/2, normalised as
 // D = (pi / 4) g(alpha) / I with I = 2 pi * integral_0^{pi/2} g(a) cos(a) sin(a) da,
-// I computed with the midpoint rule in 32 steps.
+// I computed numerically (see the handout: Simpson's rule over [0, min(pi/2, 6 beta)]).
 float D_gaussian(float NoH, float beta) {
-    // TODO: alpha from NoH, the shape g, the integral I (32 midpoint steps), D.
+    // TODO: alpha from NoH (angle_from_cos), the shape g, the integral I, then D.
     return 1.0;
 }

@@ -18,21 +18,23 @@ float D_blinn(float NoH, float beta) {
 }
 
 // Gaussian: g(alpha) = exp(-ln 2 (alpha / beta)^2), so g(beta) = 1/2, normalised as
-// D = (pi / 4) g(alpha) / I with I = 2 pi * integral_0^{pi/2} g(a) cos(a) sin(a) da,
-// I computed with the midpoint rule in 32 steps.
+// D = (pi / 4) g(alpha) / I with I = 2 pi * integral_0^{pi/2} g(a) cos(a) sin(a) da.
+// g is below 1e-10 beyond 6 beta, so I is Simpson's rule in 48 steps over [0, min(pi/2, 6 beta)].
 float D_gaussian_shape(float alpha, float beta) {
     return exp(-log(2.0) * sqr(alpha / beta));
 }
 
 float D_gaussian(float NoH, float beta) {
-    const int STEPS = 32;
-    float h = 0.5 * PI / float(STEPS);
-    float integral = 0.0;
-    for (int i = 0; i < STEPS; ++i) {
-        float a = (float(i) + 0.5) * h;
-        integral += D_gaussian_shape(a, beta) * cos(a) * sin(a);
+    const int STEPS = 48;  // even, for Simpson's rule
+    float top = min(0.5 * PI, 6.0 * beta);
+    float h = top / float(STEPS);
+    float integral = 0.0;  // int_0^top shape(a) cos(a) sin(a) da
+    for (int i = 0; i <= STEPS; ++i) {
+        float a = float(i) * h;
+        float weight = (i == 0 || i == STEPS) ? 1.0 : ((i - (i / 2) * 2) == 1 ? 4.0 : 2.0);
+        integral += weight * D_gaussian_shape(a, beta) * cos(a) * sin(a);
     }
-    integral *= 2.0 * PI * h;
-    float alpha = acos(clamp(NoH, -1.0, 1.0));
+    integral *= 2.0 * PI * h / 3.0;
+    float alpha = angle_from_cos(NoH);
     return 0.25 * PI * D_gaussian_shape(alpha, beta) / integral;
 }
