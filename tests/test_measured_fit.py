@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 
@@ -12,6 +10,7 @@ from lab.measured import fit as fitting
 from lab.measured.merl import write_merl
 from lab.measured.tabulate import tabulate
 from lab.models import load_model
+from lab.presets import read_preset, write_preset
 
 TRUTH = {"kd": (0.25, 0.12, 0.05), "ks": (0.8, 0.7, 0.6), "alpha": 0.2, "f0": (0.05,) * 3}
 DIMS = (45, 45, 90)  # a quarter-resolution table: the fit uses a subsample anyway
@@ -56,16 +55,23 @@ def test_selection_excludes_grazing_angles_and_unmeasured(noisy_ggx):
     table.raw[:, 10, 20, :] = np.abs(table.raw[:, 10, 21, :])
 
 
-def test_two_lobes_and_preset_format(samples):
+def test_two_lobes_and_preset_format(samples, tmp_path):
     result = fitting.fit(samples, "cook_torrance", lobes=2)
     one = fitting.fit(samples, "cook_torrance", lobes=1)
     assert result.error <= one.error * 1.001
-    preset = json.loads(json.dumps(result.preset()))
-    assert [m["model"] for m in preset["models"]] == ["cook_torrance"] * 2
+    table = tmp_path / "data" / "ct.binary"
+    path = write_preset(result.preset(table, tmp_path), tmp_path / "fit.toml")
+    preset = read_preset(path)  # the lab's TOML preset layout, read back
+    entries = preset["model"]
+    assert [m["model"] for m in entries] == ["measured", "cook_torrance", "cook_torrance"]
+    assert entries[0]["table"] == "data/ct.binary"
+    assert "SUM" in preset["notes"] and "lobe 2 of 2" in entries[2]["label"]
     model = load_model("cook_torrance")
-    for entry in preset["models"]:
-        model.resolve(entry["values"])  # every value inside the header's ranges
-    assert preset["models"][1]["values"]["kd"] == [0.0, 0.0, 0.0]
+    for entry in entries[1:]:
+        model.resolve({k: tuple(v) if isinstance(v, list) else v
+                       for k, v in entry["values"].items()})  # inside the header's ranges
+    assert entries[2]["values"]["kd"] == [0.0, 0.0, 0.0]
+    assert set(preset["views"]) >= {"sphere", "polar", "sh"}
 
 
 def test_fit_command_writes_preset_and_figure(renderer, tmp_path, capsys):
@@ -75,8 +81,11 @@ def test_fit_command_writes_preset_and_figure(renderer, tmp_path, capsys):
                  "--samples", "3000", "--outdir", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "m=0.2" in out and "error" in out and out.count("wrote preset") == 2
-    preset = json.loads((tmp_path / "ct-cook_torrance-fit.json").read_text())
-    assert preset["models"][0]["values"]["m"] == pytest.approx(0.2, rel=0.01)
+    preset = read_preset(tmp_path / "ct-cook_torrance-fit.toml")
+    assert preset["model"][0] == {"model": "measured", "table": "ct.binary", "label": "measured",
+                                  "color": fitting.MEASURED_COLOR, "visible": True,
+                                  "values": {"interpolation": "linear", "gain": 1.0}}
+    assert preset["model"][1]["values"]["m"] == pytest.approx(0.2, rel=0.01)
     assert (tmp_path / "ct-ward-fit.png").stat().st_size > 10000
     # The comparison table ranks the true model first.
     assert out.split("rel.")[1].split()[0] == "cook_torrance"

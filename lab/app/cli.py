@@ -23,7 +23,8 @@ def has_display() -> bool:
 
 def register(subparsers) -> None:
     p = subparsers.add_parser("app", help="open the desktop lab (the default command)")
-    p.add_argument("models", nargs="*", help="models or .glsl/.brdf files to start with")
+    p.add_argument("models", nargs="*",
+                   help="models, .glsl/.brdf files or MERL .binary tables to start with")
     p.add_argument("--preset", metavar="FILE.toml", help="start from a saved or shipped preset")
     p.add_argument("--presenter", action="store_true", help="large fonts and full screen")
     p.add_argument("--bench", action="store_true",
@@ -47,8 +48,8 @@ def argparse_hidden():
 
 def resolve_preset(text: str) -> Path:
     """A preset file, or the name of a shipped one (`phong_exponents`)."""
-    from lab.app.state import shipped_presets
     from lab.cli import UsageError
+    from lab.presets import shipped_presets
 
     path = Path(text)
     if path.is_file():
@@ -78,7 +79,7 @@ def cmd_app(args) -> int:
     preset = resolve_preset(args.preset) if args.preset else None
     from PyQt6.QtWidgets import QApplication
 
-    from lab.app.state import load_any
+    from lab.presets import load_any
 
     models = [load_any(m) for m in args.models]  # fail early, before any window
     app = QApplication.instance() or QApplication(sys.argv[:1])

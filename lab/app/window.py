@@ -5,6 +5,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+import moderngl
 from PyQt6.QtCore import QFileSystemWatcher, Qt, QTimer, pyqtSignal
 from PyQt6.QtGui import QAction, QFont, QKeySequence
 from PyQt6.QtWidgets import (
@@ -19,13 +20,18 @@ from PyQt6.QtWidgets import (
 )
 
 from lab.app.renderer import AppRenderer
-from lab.app.state import LabState, dump_toml, load_any, read_preset, shipped_presets
+from lab.app.sh_view import SHView
+from lab.app.state import LabState
 from lab.app.views import VIEW_CLASSES, View
 from lab.app.widgets import ModelList, ParamPanel, SettingSlider
 from lab.glsl import ShaderCompileError
+from lab.measured.model import measured_model
 from lab.models import Model, ModelError, load_model, model_names
+from lab.presets import dump_toml, load_any, read_preset, shipped_presets
 
 REFINE_DELAY_MS = 150
+# The views in the window: the core ones and the spherical-harmonics view (lab.measured).
+ALL_VIEWS = [*VIEW_CLASSES, SHView]
 
 
 class MainWindow(QMainWindow):
@@ -107,8 +113,9 @@ class MainWindow(QMainWindow):
                  "lobe3d": Qt.DockWidgetArea.RightDockWidgetArea,
                  "slice": Qt.DockWidgetArea.BottomDockWidgetArea,
                  "albedo": Qt.DockWidgetArea.BottomDockWidgetArea,
-                 "object": Qt.DockWidgetArea.BottomDockWidgetArea}
-        for cls in VIEW_CLASSES:
+                 "object": Qt.DockWidgetArea.BottomDockWidgetArea,
+                 "sh": Qt.DockWidgetArea.RightDockWidgetArea}
+        for cls in ALL_VIEWS:
             view = cls(self.lab, self.renderer)
             dock = QDockWidget(cls.title, self)
             dock.setObjectName(cls.name)
@@ -120,6 +127,7 @@ class MainWindow(QMainWindow):
         # Spheres on top; polar and 3D lobe beside each other; the rest in a row below.
         self.splitDockWidget(self.docks["sphere"], self.docks["polar"], Qt.Orientation.Vertical)
         self.splitDockWidget(self.docks["polar"], self.docks["lobe3d"], Qt.Orientation.Horizontal)
+        self.splitDockWidget(self.docks["lobe3d"], self.docks["sh"], Qt.Orientation.Horizontal)
         self.splitDockWidget(self.docks["slice"], self.docks["albedo"], Qt.Orientation.Horizontal)
         self.splitDockWidget(self.docks["albedo"], self.docks["object"], Qt.Orientation.Horizontal)
         self.resizeDocks([self.docks["sphere"], self.docks["polar"]], [320, 260],
@@ -135,6 +143,8 @@ class MainWindow(QMainWindow):
         for name in model_names():
             add_menu.addAction(name, lambda n=name: self.lab.add(load_model(n)))
         self._action(file_menu, "Open model file (.glsl, .brdf)…", self.ask_open, "Ctrl+O")
+        self._action(file_menu, "Open measured BRDF (.binary)…", self.ask_open_measured,
+                     "Ctrl+M")
         file_menu.addSeparator()
         self._action(file_menu, "Load preset…", self.ask_load_preset, "Ctrl+L")
         self._action(file_menu, "Save preset…", self.ask_save_preset, "Ctrl+S")
@@ -207,9 +217,28 @@ class MainWindow(QMainWindow):
     # -- files --------------------------------------------------------------------------
     def ask_open(self) -> None:
         path, _ = QFileDialog.getOpenFileName(
-            self, "Open a model", "", "Models (*.glsl *.brdf);;All files (*)")
+            self, "Open a model", "",
+            "Models (*.glsl *.brdf *.binary);;Measured BRDFs (*.binary);;All files (*)")
         if path:
             self.open_file(path)
+
+    def ask_open_measured(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(
+            self, "Open a measured BRDF", "", "MERL tables (*.binary);;All files (*)")
+        if path:
+            self.open_measured(path)
+
+    def open_measured(self, path: str | Path):
+        """Add a MERL .binary table as the `measured` model; errors go to the error panel."""
+        path = str(Path(path).resolve())
+        try:
+            model = measured_model(path)
+            self.check(model)
+        except (ModelError, ShaderCompileError, moderngl.Error, ValueError, MemoryError) as err:
+            self.show_error(path, err, "the table was not opened")
+            return None
+        self.statusBar().showMessage(f"opened the measured BRDF {path}", 5000)
+        return self.lab.add(model)
 
     def check(self, model: Model) -> None:
         """Compile the model for the views it is drawn in; raises ShaderCompileError."""
@@ -217,9 +246,10 @@ class MainWindow(QMainWindow):
         self.renderer.sphere(model, model.defaults(), (s["theta_i"], s["phi_i"]), size=8)
         self.renderer.polar(model, model.defaults(), s["theta_i"], s["phi_i"])
 
-    def show_error(self, path: str, err: Exception) -> None:
+    def show_error(self, path: str, err: Exception,
+                   outcome: str = "the last good version keeps running") -> None:
         text = str(err)
-        self.errors.setPlainText(f"{path}: the last good version keeps running.\n{text}")
+        self.errors.setPlainText(f"{path}: {outcome}.\n{text}")
         self.error_dock.show()
         self.statusBar().showMessage(text.splitlines()[0] if text else "error", 10000)
 
@@ -228,6 +258,8 @@ class MainWindow(QMainWindow):
 
     def open_file(self, path: str | Path):
         """Add a model from a file and watch it; errors go to the error panel."""
+        if str(path).endswith(".binary"):
+            return self.open_measured(path)  # data, not code: nothing to watch
         path = str(Path(path).resolve())
         self.watch(path)
         try:

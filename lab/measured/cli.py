@@ -3,7 +3,6 @@ measured-bench."""
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 FIT_MODELS = ("ward", "blinn_phong", "cook_torrance", "ggx")
@@ -53,8 +52,12 @@ def cmd_tabulate(args) -> int:
     return 0
 
 
-def _write_preset(result, path: Path) -> None:
-    path.write_text(json.dumps(result.preset(), indent=2) + "\n", encoding="utf-8")
+def _write_preset(result, table: str, path: Path) -> None:
+    """The fit and the table as a preset (TOML) the desktop lab opens."""
+    from lab.presets import write_preset
+
+    data = result.preset(table, path.parent)
+    write_preset(data, path, f"brdf-lab fit: open with 'brdf-lab app --preset {path.name}'")
 
 
 def cmd_fit(args) -> int:
@@ -81,8 +84,8 @@ def cmd_fit(args) -> int:
                 for n, v in values.items()
             )
             print(f"  lobe {k}: {shown}")
-        preset = outdir / f"{stem}-{name}-fit.json"
-        _write_preset(result, preset)
+        preset = outdir / f"{stem}-{name}-fit.toml"
+        _write_preset(result, args.table, preset)
         print(f"  wrote preset {preset}")
         if not args.no_figure:
             figure = fit_figure(table, result, outdir / f"{stem}-{name}-fit.png")

@@ -13,6 +13,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -39,6 +40,9 @@ STARTS: dict[str, list[float]] = {
     "cook_torrance": [0.05, 0.15, 0.4],
     "ggx": [0.05, 0.15, 0.4],
 }
+# Colours of the fit preset: the table light grey, the fitted lobes from the app's palette.
+MEASURED_COLOR = "#e0e0e0"
+FIT_COLORS = ("#e6194b", "#f58231")
 ROUGHNESS = {"ward": "alpha_x", "blinn_phong": "ke", "cook_torrance": "m", "ggx": "alpha"}
 
 Evaluate = Callable[[str, dict, np.ndarray, np.ndarray], np.ndarray]
@@ -129,9 +133,36 @@ class FitResult:
     samples: int
     history: list[float] = field(default_factory=list)
 
-    def preset(self) -> dict:
-        """The fit as a preset the lab opens: the lobes add up."""
-        return {"models": [{"model": self.model, "values": v} for v in self.lobes]}
+    def preset(self, table: str | Path | None = None, base: Path | None = None) -> dict:
+        """The fit as a preset the lab opens (lab/presets.py layout): the measured table
+        (when given; its path relative to the folder `base`) and one entry per lobe."""
+        from lab import presets
+
+        entries = []
+        if table is not None:
+            entries.append({"model": presets.MEASURED, "table": presets.relative(table, base),
+                            "label": "measured", "color": MEASURED_COLOR, "visible": True,
+                            "values": {"interpolation": "linear", "gain": 1.0}})
+        many = len(self.lobes) > 1
+        for k, values in enumerate(self.lobes):
+            label = f"{self.model} fit" + (f", lobe {k + 1} of {len(self.lobes)}" if many else "")
+            entries.append({"model": self.model, "label": label,
+                            "color": FIT_COLORS[k % len(FIT_COLORS)], "visible": True,
+                            "values": presets.plain_values(values)})
+        source = Path(table).name if table is not None else "a table"
+        notes = (f"{self.model} fitted to {source}: {self.metric} error {self.error:.4g}"
+                 f" on {self.samples} samples")
+        if many:
+            notes += (f"; the fit is the SUM of the {len(self.lobes)} {self.model} lobes "
+                      "(the diffuse term is in lobe 1): each lobe is shown on its own")
+        return {
+            "title": f"{self.model} fit to {source}",
+            "notes": notes,
+            "views": ["sphere", "polar", "lobe3d", "sh", "slice", "albedo", "object"],
+            "settings": {"theta_i": 45.0, "phi_i": 0.0, "multiply_cos": True,
+                         "polar_log": True, "polar_cos": True},
+            "model": entries,
+        }
 
 
 class _Packing:

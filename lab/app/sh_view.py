@@ -1,0 +1,188 @@
+"""The spherical-harmonics view: the selected model's lobe and its SH reconstruction.
+
+The lobe g(w_o) = f_r(w_i, w_o) cos(theta_o) for the current light comes from the model's
+GLSL (Renderer.probe on a quadrature grid, Renderer.polar in the plane of incidence); the
+projection, reconstruction and errors are lab/measured/sh.py's. Left: g and its
+reconstruction at order L in the plane of incidence (negative lobes of the truncated
+series show as ringing below zero). Right: relative L2 error over the hemisphere vs order.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+import pyqtgraph as pg
+from PyQt6.QtCore import Qt
+from PyQt6.QtWidgets import QLabel, QSizePolicy, QSpinBox
+
+from lab.app.state import ModelState, Settings
+from lab.app.views import LUMA, View, state_key
+from lab.measured import sh
+from lab.render import direction, plane_of_incidence
+
+MAX_ORDER = 16
+SERIES_COLOR = (255, 210, 0)
+GRID = (48, 96)  # Gauss-Legendre nodes in cos(theta) x uniform phi: exact enough to order 16
+
+
+@lru_cache(maxsize=2)
+def grid_basis(n_theta: int, n_phi: int, order: int) -> tuple[sh.Grid, np.ndarray]:
+    """The quadrature grid and the harmonics on it (the same for every light and model)."""
+    grid = sh.hemisphere_grid(n_theta, n_phi)
+    return grid, sh.real_sh(order, grid.theta, grid.phi)
+
+
+class SettingSpin(QSpinBox):
+    """A spin box bound to one int setting."""
+
+    def __init__(self, settings: Settings, name: str, low: int, high: int):
+        super().__init__()
+        self.setRange(low, high)
+        self.setValue(int(settings[name]))
+        self.valueChanged.connect(lambda v: settings.set(name, v))
+        settings.changed.connect(
+            lambda n: n == name and self.value() != settings[name]
+            and self.setValue(int(settings[name]))
+        )
+
+
+class SHData:
+    """One model's lobe at one light: coefficients, errors by order, the plane's curves."""
+
+    def __init__(self, coefficients: np.ndarray, errors: np.ndarray, theta_o: np.ndarray,
+                 plane: np.ndarray, plane_basis: np.ndarray, peak: float):
+        self.coefficients = coefficients  # ((MAX_ORDER + 1)^2,) of the luminance lobe
+        self.errors = errors  # (MAX_ORDER + 1,) relative L2 error over the hemisphere
+        self.theta_o = theta_o  # plane of incidence, -90 (light side) .. 90 deg
+        self.plane = plane  # the lobe there (luminance of f_r cos theta_o)
+        self.plane_basis = plane_basis
+        self.peak = peak
+
+    def reconstruction(self, order: int) -> np.ndarray:
+        """The order-`order` series in the plane of incidence."""
+        n = sh.coefficient_count(order)
+        return self.plane_basis[:, :n] @ self.coefficients[:n]
+
+
+def sh_data(renderer, state: ModelState, theta_i: float, phi_i: float) -> SHData:
+    """Project the model's lobe (from its GLSL) for light (theta_i, phi_i) on harmonics."""
+    grid, basis = grid_basis(*GRID, MAX_ORDER)
+    V = grid.directions
+    L = np.repeat(direction(theta_i, phi_i)[None], len(V), axis=0)
+    f = renderer.probe(state.model, state.values, L, V).astype(np.float64)
+    lobe = np.nan_to_num(f @ LUMA * V[:, 2])[:, None]
+    coefficients = sh.project(lobe, grid, MAX_ORDER)
+    # Relative error for every order at once: add one degree's block at a time.
+    norm = math.sqrt(float((grid.weight * lobe[:, 0] ** 2).sum()))
+    approx = np.zeros(len(V))
+    errors = []
+    for order in range(MAX_ORDER + 1):
+        block = slice(order * order, (order + 1) ** 2)
+        approx += basis[:, block] @ coefficients[block, 0]
+        residual = math.sqrt(float((grid.weight * (approx - lobe[:, 0]) ** 2).sum()))
+        errors.append(residual / norm if norm > 0 else 0.0)
+    polar = renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
+    theta_o, Vp = plane_of_incidence(theta_i, phi_i, step=1.0)
+    plane_basis = sh.real_sh(MAX_ORDER, np.arccos(np.clip(Vp[:, 2], -1.0, 1.0)),
+                             np.arctan2(Vp[:, 1], Vp[:, 0]))
+    plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA)
+    finite = plane[np.abs(theta_o) <= 87.0]
+    peak = float(finite.max()) if finite.size else 0.0
+    return SHData(coefficients[:, 0], np.array(errors), theta_o, plane, plane_basis, peak)
+
+
+class SHView(View):
+    """The selected model's lobe at the current light and its SH series at order L."""
+
+    title = "Spherical harmonics"
+    name = "sh"
+
+    def __init__(self, lab, renderer):
+        super().__init__(lab, renderer)
+        self.tools.addWidget(QLabel("order L"))
+        self.order_box = SettingSpin(lab.settings, "sh_order", 0, MAX_ORDER)
+        self.tools.addWidget(self.order_box)
+        self.info = QLabel()
+        self.info.setMinimumWidth(40)  # long texts are cut, they never widen the window
+        self.info.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+        self.tools.addWidget(self.info, 1)
+        self.graphics = pg.GraphicsLayoutWidget()
+        self.graphics.ci.layout.setColumnStretchFactor(0, 3)
+        self.graphics.ci.layout.setColumnStretchFactor(1, 2)
+        self.layout_.addWidget(self.graphics, 1)
+        self.lobe_plot = self.graphics.addPlot()
+        self.lobe_plot.setLabel("bottom", "θo (deg)")
+        self.lobe_plot.setMouseEnabled(False, False)
+        self.lobe_plot.addItem(pg.InfiniteLine(pos=0.0, angle=0, pen=pg.mkPen((120, 120, 120))))
+        self.mirror = pg.InfiniteLine(angle=90, pen=pg.mkPen(
+            (120, 200, 255), style=Qt.PenStyle.DashLine))
+        self.lobe_plot.addItem(self.mirror)
+        self.lobe_curve = self.lobe_plot.plot()
+        self.series_curve = self.lobe_plot.plot()
+        self.error_plot = self.graphics.addPlot()
+        self.error_plot.setLabel("bottom", "order L")
+        self.error_plot.setLabel("left", "error")
+        self.error_plot.getAxis("bottom").setTicks(
+            [[(k, str(k)) for k in range(0, MAX_ORDER + 1, 8)]])
+        self.error_plot.setLogMode(False, True)
+        self.error_plot.setMouseEnabled(False, False)
+        self.error_curve = self.error_plot.plot(symbol="o", symbolSize=4)
+        self.error_mark = self.error_plot.plot(symbol="o", symbolSize=10, pen=None)
+        self.data: SHData | None = None
+        self.state: ModelState | None = None
+        self.setMinimumWidth(250)  # two plots side by side
+
+    def subject(self) -> ModelState | None:
+        visible = self.lab.visible_models()
+        if self.lab.selected in visible:
+            return self.lab.selected
+        return visible[0] if visible else None
+
+    @property
+    def order(self) -> int:
+        return int(self.lab.settings["sh_order"])
+
+    @property
+    def order_errors(self) -> np.ndarray:
+        """Relative error by order 0..MAX_ORDER of the shown lobe (empty without one)."""
+        return self.data.errors if self.data is not None else np.zeros(0)
+
+    def redraw(self, fast: bool = False) -> bool:
+        s = self.lab.settings
+        state = self.subject()
+        self.state = state
+        self.cache = {k: v for k, v in self.cache.items() if state is not None and k == id(state)}
+        self.data = None
+        if state is not None and not state.model.delta:
+            key = state_key(state, s["theta_i"], s["phi_i"])
+            self.data = self.cached(state, key, lambda: sh_data(
+                self.renderer, state, s["theta_i"], s["phi_i"]))
+        data = self.data
+        if data is None:
+            for curve in (self.lobe_curve, self.series_curve, self.error_curve,
+                          self.error_mark):
+                curve.setData([], [])
+            delta = state is not None and state.model.delta
+            self.info.setText("an ideal mirror has no finite lobe to expand" if delta
+                              else "no model to show")
+            return False
+        order = self.order
+        series = data.reconstruction(order)
+        self.lobe_curve.setData(data.theta_o, data.plane, pen=pg.mkPen(state.color, width=2))
+        self.series_curve.setData(data.theta_o, series, pen=pg.mkPen(
+            SERIES_COLOR, width=1.5, style=Qt.PenStyle.DashLine))
+        self.mirror.setValue(s["theta_i"])
+        top = max(data.peak, 1e-9)
+        self.lobe_plot.setRange(xRange=(-90, 90), yRange=(-0.35 * top, 1.15 * top), padding=0)
+        orders = np.arange(MAX_ORDER + 1)
+        errors = np.maximum(data.errors, 1e-6)  # log axis
+        self.error_curve.setData(orders, errors, pen=pg.mkPen(state.color, width=1.5))
+        self.error_mark.setData([order], [errors[order]], symbolBrush=SERIES_COLOR)
+        self.info.setText(f"{sh.coefficient_count(order)} coefficients, "
+                          f"error {100 * data.errors[order]:.2g} %")
+        self.info.setToolTip("left: f_r cos θo in the plane of incidence (solid) and its "
+                             "spherical-harmonics series (dashed yellow); right: the "
+                             "relative L2 error over the hemisphere vs order")
+        return False
