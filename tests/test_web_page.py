@@ -213,3 +213,81 @@ def test_export_into_a_file_is_a_one_line_error(tmp_path, capsys):
     assert main(["web-export", str(target)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "is a file" in err
+
+
+def test_two_lights_add_up(lab_page, renderer):
+    """Light A alone + light B alone = both together; ambient adds on every sphere pixel;
+    and the page agrees with the desktop render of the same lights."""
+    from lab.render import Light
+
+    a = {"theta": 30, "phi": 0, "rgb": [1, 0.8, 0.6]}
+    b = {"theta": 60, "phi": 135, "rgb": [0.2, 0.5, 1]}
+    ambient = [0.05, 0.02, 0.01]
+    lab_page.js("n => brdfLab.setModel(0, n)", "phong")
+    images = []
+    for lights, amb in (([a], [0, 0, 0]), ([b], [0, 0, 0]), ([a, b], [0, 0, 0]), ([a, b], ambient)):
+        lab_page.js("([l, amb]) => brdfLab.setLights(l, amb)", [lights, amb])
+        assert lab_page.js("brdfLab.errors(0)") == ""
+        images.append(lab_page.sphere())
+    only_a, only_b, both, lit = images
+    on = both[..., 3] > 0
+    assert only_a[on][:, :3].max() > 0.05 and only_b[on][:, :3].max() > 0.05
+    np.testing.assert_allclose(both[on], (only_a + only_b)[on] - [0, 0, 0, 1], rtol=1e-5, atol=1e-6)
+    np.testing.assert_allclose(lit[on][:, :3], both[on][:, :3] + ambient, rtol=1e-5, atol=1e-6)
+    assert (lit[~on] == 0).all()  # the background gets no ambient
+    desktop = renderer.sphere(load_model("phong"), {}, size=SIZE, ambient=tuple(ambient),
+                              lights=[Light(d["theta"], d["phi"], tuple(d["rgb"])) for d in (a, b)])
+    close = np.abs(lit - desktop)[..., :3] <= ABS_TOL + REL_TOL * np.abs(desktop[..., :3])
+    assert close[on].all()
+    # The page keeps the lights in its address, so a preset can hold them.
+    hash_ = lab_page.js("location.hash")
+    assert "light=30,0,1,0.8,0.6&light=60,135,0.2,0.5,1&ambient=0.05,0.02,0.01" in hash_
+    assert lab_page.page.locator(".light-row").count() == 2
+    assert lab_page.errors == []
+    lab_page.js(f"brdfLab.setLights([{{theta: {LIGHT[0]}, phi: {LIGHT[1]}}}])")
+
+
+def test_add_light_button(browser):
+    page = Page(browser, f"model=lambert&size={SIZE}&light=0,0")
+    try:
+        before = page.sphere()
+        page.page.click("#add-light")
+        page.js("brdfLab.renderNow()")
+        assert page.js("brdfLab.state.lights.length") == 2
+        after = page.sphere()
+        # A second white light can only add light (Lambert: nowhere negative).
+        on = before[..., 3] > 0
+        assert (after[on][:, :3] >= before[on][:, :3] - 1e-6).all()
+        assert after[on][:, :3].sum() > 1.1 * before[on][:, :3].sum()
+        page.page.click(".light-row[data-light='1'] button.close")
+        assert page.js("brdfLab.state.lights.length") == 1
+        assert page.errors == []
+    finally:
+        page.page.close()
+
+
+def test_mirror_spike_has_the_reflectance_length(lab_page, renderer):
+    """The δ spike's reflectance is read back from the model's DELTA_REFLECTANCE."""
+    model = load_model("mirror")
+    for rho in ((0.9, 0.9, 0.9), (0.6, 0.3, 0.1)):
+        lab_page.js("rho => brdfLab.setModel(0, 'mirror', {rho_s: rho})", list(rho))
+        spike = lab_page.js("brdfLab.spike(0)")
+        desktop = renderer.delta_reflectance(model, {"rho_s": rho}, LIGHT[0], LIGHT[1])
+        np.testing.assert_allclose(spike["rgb"], desktop, rtol=1e-6)
+        np.testing.assert_allclose(spike["rgb"], rho, rtol=1e-6)
+        luma = 0.2126 * rho[0] + 0.7152 * rho[1] + 0.0722 * rho[2]
+        assert spike["length"] == pytest.approx(luma, rel=1e-5)  # of the plot's radius
+    lab_page.js("brdfLab.setModel(0, 'phong')")
+    assert lab_page.js("brdfLab.spike(0)")["rgb"] is None
+
+
+def test_labels_and_tooltips(lab_page):
+    """Parameter names carry the header's meaning; light angles show degrees."""
+    lab_page.js("brdfLab.setModel(0, 'phong')")
+    tip = lab_page.page.locator("[data-param=ke] label").get_attribute("title")
+    assert tip.startswith("ke: specular exponent: larger means a smaller, sharper highlight")
+    assert "1 to 1000, log slider" in tip
+    row = lab_page.page.locator(".light-row").first
+    assert row.locator(".theta-text").inner_text() == f"{LIGHT[0]:g}°"
+    assert row.locator(".phi-text").inner_text() == f"{LIGHT[1]:g}°"
+    assert "θi" in row.inner_text() and "φi" in row.inner_text()

@@ -38,7 +38,14 @@ const lab = {
   modelErrors: {}, // name -> header error text
   order: [],
   panels: [],
-  light: { theta: 45, phi: 0 },
+  // Directional lights in camera space (theta 0: at the eye); the polar plot shows the
+  // plane of incidence of the first. Ambient is radiance added everywhere on the sphere.
+  lights: [{ theta: 45, phi: 0, rgb: [1, 1, 1] }],
+  ambient: [0, 0, 0],
+  active: 0, // the light that dragging on a sphere moves
+  get light() {
+    return { theta: this.lights[0].theta, phi: this.lights[0].phi };
+  },
   exposure: 0,
   size: 384,
   cosWeighted: false,
@@ -187,9 +194,8 @@ class Panel {
     } });
     this.closeButton = el("button", { class: "close", title: "remove this model", onclick: () => removePanel(this) }, "×");
     this.canvas = el("canvas", { class: "sphere", width: lab.size, height: lab.size });
-    this.canvas.style.width = this.canvas.style.height = `${lab.size}px`;
-    this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size * 0.62) });
-    this.polar.style.width = `${lab.size}px`;
+    this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size / 2 + (lab.embed ? 34 : 28)) });
+    this.displaySize(lab.size);
     this.errorBox = el("pre", { class: "errors", hidden: "" });
     this.controls = el("div", { class: "controls" });
     this.formula = el("div", { class: "formula" });
@@ -219,6 +225,12 @@ class Panel {
     });
   }
 
+  /** CSS size of the sphere (and the polar plot's width); the render keeps lab.size. */
+  displaySize(px) {
+    this.canvas.style.width = this.canvas.style.height = `${px}px`;
+    this.polar.style.width = `${px}px`;
+  }
+
   fillPicker() {
     this.picker.replaceChildren(...lab.order.map((n) => el("option", { value: n }, n)));
     this.picker.value = this.name;
@@ -242,8 +254,12 @@ class Panel {
   }
 
   control(p) {
-    const label = el("label", { title: p.doc }, p.name);
-    const row = el("div", { class: `param param-${p.kind}`, "data-param": p.name }, label);
+    const range = p.kind === "float"
+      ? ` (${formatG(p.minimum)} to ${formatG(p.maximum)}${p.scale === "log" ? ", log slider" : ""})`
+      : p.kind === "color" ? " (r,g,b each 0 to 1)" : "";
+    const tip = `${p.name}: ${p.doc || "no description in the model's header"}${range}`;
+    const label = el("label", { title: tip }, p.name);
+    const row = el("div", { class: `param param-${p.kind}`, "data-param": p.name, title: tip }, label);
     const set = (value) => {
       this.values[p.name] = value;
       if (p.kind === "enum") this.programs.clear(); // another constant: compile again
@@ -331,9 +347,11 @@ class Panel {
 
   program(view) {
     const enums = Object.fromEntries(this.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, this.values[p.name]]));
-    const key = `${view}|${JSON.stringify(enums)}`;
+    const lights = view === "sphere" ? lab.lights.length : 0;
+    const key = `${view}|${lights}|${JSON.stringify(enums)}`;
     if (!this.programs.has(key)) {
-      const preamble = view === "sphere" ? `const int LIGHT_COUNT = 1;` : "";
+      // The light count is a constant of the sphere view, as on the desktop.
+      const preamble = view === "sphere" ? `const int LIGHT_COUNT = ${lights};` : "";
       const source = assembleFragment(this.model, view, lab.files, { target: "300es", preamble, enums });
       this.programs.set(key, compile(this.gl, source.text, source));
     }
@@ -373,12 +391,14 @@ class Panel {
     this.setParams(gl, compiled);
     const dirs = new Float32Array(3 * MAX_LIGHTS);
     const rgb = new Float32Array(3 * MAX_LIGHTS);
-    dirs.set(direction(lab.light.theta, lab.light.phi));
-    rgb.set([1, 1, 1]);
+    lab.lights.forEach((light, i) => {
+      dirs.set(direction(light.theta, light.phi), 3 * i);
+      rgb.set(light.rgb, 3 * i);
+    });
     gl.uniform2f(u.u_resolution, lab.size, lab.size);
     if (u.u_light_dir) gl.uniform3fv(u.u_light_dir, dirs);
     if (u.u_light_rgb) gl.uniform3fv(u.u_light_rgb, rgb);
-    if (u.u_ambient) gl.uniform3f(u.u_ambient, 0, 0, 0);
+    if (u.u_ambient) gl.uniform3fv(u.u_ambient, lab.ambient);
     if (u.u_multiply_cos) gl.uniform1i(u.u_multiply_cos, 1);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
     gl.viewport(0, 0, lab.size, lab.size);
@@ -423,7 +443,30 @@ class Panel {
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     textures.forEach((t) => gl.deleteTexture(t));
     this.lobe = out;
-    drawPolar(this.polar, out, theta, this.model.delta);
+    this.spike = this.model.delta ? this.deltaReflectance(gl, theta, phi) : null;
+    this.polarGeometry = drawPolar(this.polar, out, theta, this.spike);
+  }
+
+  /** The reflectance (RGB) of a delta model's spike, read back from its DELTA_REFLECTANCE:
+   * the albedo view with no samples leaves only the delta's share (as lab/render.py does). */
+  deltaReflectance(gl, thetaDeg, phiDeg) {
+    const compiled = this.program("albedo");
+    const u = compiled.uniforms;
+    gl.useProgram(compiled.program);
+    gl.bindVertexArray(this.vao);
+    this.setParams(gl, compiled);
+    gl.uniform1f(u.u_theta0, (thetaDeg * Math.PI) / 180);
+    if (u.u_theta_step) gl.uniform1f(u.u_theta_step, 0);
+    if (u.u_phi_i) gl.uniform1f(u.u_phi_i, (phiDeg * Math.PI) / 180);
+    if (u.u_samples) gl.uniform1i(u.u_samples, 0);
+    gl.uniform1i(u.u_wedges, 1);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.probeTarget.fbo);
+    gl.viewport(0, 0, 1, 1);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    const out = new Float32Array(4);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.FLOAT, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return Array.from(out.subarray(0, 3));
   }
 
   /** The float render of the sphere, rows from the top, as {width, height, data}. */
@@ -441,14 +484,23 @@ class Panel {
   }
 }
 
-function drawPolar(canvas, values, thetaI, delta) {
+const luma = (r, g, b) => 0.2126 * r + 0.7152 * g + 0.0722 * b;
+const GRAZING_DEG = 87; // left out of the plot's scale: some models (Ward) diverge there
+
+/** The lobe (luminance of f_r) on a half disc, 0 deg = the normal; `spike`: the RGB
+ * reflectance of a delta model's spike, drawn at the mirror angle with that length. */
+function drawPolar(canvas, values, thetaI, spike) {
   const ctx = canvas.getContext("2d");
   const w = canvas.width;
   const h = canvas.height;
+  // Text the same size on screen whatever the canvas is scaled to (embedded demos shrink it).
+  const shown = canvas.clientWidth || w;
+  const font = Math.round(((lab.embed ? 15 : 12) * w) / shown);
   const cx = w / 2;
-  const cy = h - 14;
-  const radius = Math.min(w / 2 - 10, h - 24);
+  const cy = h - Math.round(font * 0.6);
+  const radius = Math.min(w / 2 - 2.2 * font, h - 4.1 * font);
   ctx.clearRect(0, 0, w, h);
+  ctx.font = `${font}px system-ui, sans-serif`;
   ctx.lineWidth = 1;
   ctx.strokeStyle = "#8888";
   ctx.beginPath();
@@ -471,36 +523,61 @@ function drawPolar(canvas, values, thetaI, delta) {
     ctx.stroke();
     ctx.setLineDash([]);
   };
+  const label = (text, angleDeg, r, color) => {
+    ctx.fillStyle = color;
+    ctx.textAlign = "center";
+    ctx.textBaseline = "middle";
+    ctx.fillText(text, ...at(angleDeg, r));
+    ctx.textAlign = "left";
+    ctx.textBaseline = "alphabetic";
+  };
   ray(-thetaI, radius, "#e0a030", []); // toward the light
   ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
+  label("N", 0, radius + 0.7 * font, "#aaa");
+  label("L", -thetaI, radius + 0.8 * font, "#e0a030");
+  label("R", thetaI, radius + 0.8 * font, "#aaa");
   const lum = [];
+  let peak = 0;
   for (let i = 0; i < POLAR_STEPS; i++) {
-    let f = 0.2126 * values[4 * i] + 0.7152 * values[4 * i + 1] + 0.0722 * values[4 * i + 2];
+    let f = luma(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
     if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
-    lum.push(Number.isFinite(f) ? Math.max(f, 0) : 0);
+    f = Number.isFinite(f) ? Math.max(f, 0) : 0;
+    lum.push(f);
+    if (Math.abs(i - 90) <= GRAZING_DEG) peak = Math.max(peak, f);
   }
-  const peak = Math.max(...lum);
-  ctx.font = "11px sans-serif";
-  ctx.fillStyle = "#999";
+  // The outer circle: the lobe's peak; with a delta spike at least 1, so the spike's length
+  // is its reflectance (the whole circle = all the light).
+  const spikeLum = spike ? luma(...spike) : 0;
+  const scale = spike ? Math.max(peak, 1) : peak;
   const what = lab.cosWeighted ? "f_r cos θo" : "f_r";
-  ctx.fillText(`${what}, plane of incidence; peak ${formatG(round(peak))} sr⁻¹`, 4, 12);
+  ctx.fillStyle = "#aaa";
+  ctx.fillText(`${what}, plane of incidence`, 2, font);
+  const circle = spike && peak < 1 ? "1 (all the light)" : `${formatG(round(peak))} sr⁻¹`;
+  ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}` : "f_r = 0 in this plane", 2, 2.2 * font);
   if (peak > 0) {
     ctx.strokeStyle = "#4aa3ff";
     ctx.fillStyle = "#4aa3ff33";
     ctx.lineWidth = 2;
     ctx.beginPath();
     ctx.moveTo(cx, cy);
-    lum.forEach((f, i) => ctx.lineTo(...at(i - 90, (radius * f) / peak)));
+    lum.forEach((f, i) => ctx.lineTo(...at(i - 90, radius * Math.min(f / scale, 1.15))));
     ctx.closePath();
     ctx.fill();
     ctx.stroke();
   }
-  if (delta) {
-    ctx.lineWidth = 3;
-    ray(thetaI, radius, "#ff5a5a", []);
-    ctx.fillStyle = "#ff5a5a";
-    ctx.fillText("δ spike (ideal mirror)", ...at(thetaI, radius * 0.6));
+  if (spike) {
+    ctx.lineWidth = 4;
+    const length = (radius * spikeLum) / scale;
+    ray(thetaI, length, "#ff5a5a", []);
+    ctx.lineWidth = 1;
+    ctx.fillStyle = "#ff7a7a";
+    // Beside the spike's middle, kept inside the canvas.
+    const text = `δ spike, ρ = ${formatG(round(spikeLum))}`;
+    const [x, y] = at(thetaI, length * 0.5);
+    const width = ctx.measureText(text).width;
+    ctx.fillText(text, Math.min(Math.max(x + 8, 2), w - width - 2), Math.max(y, 3.2 * font));
   }
+  return { radius, scale, spikeLength: spike ? (radius * spikeLum) / scale : 0 };
 }
 
 // -- page-level actions ---------------------------------------------------------------------
@@ -517,12 +594,99 @@ function renderAll() {
   for (const panel of lab.panels) panel.render();
 }
 
-function setLight(theta, phi) {
-  lab.light = { theta: round(Math.min(Math.max(theta, 0), 90)), phi: round(((phi % 360) + 540) % 360 - 180) };
-  $("#light-theta").value = lab.light.theta;
-  $("#light-phi").value = lab.light.phi;
-  $("#light-text").textContent = `θ ${formatG(lab.light.theta)}°, φ ${formatG(lab.light.phi)}°`;
+const clampTheta = (theta) => round(Math.min(Math.max(theta, 0), 90));
+const wrapPhi = (phi) => round(((phi % 360) + 540) % 360 - 180);
+
+/** Moves light `index` (the active one unless given) and shows it in its row. */
+function setLight(theta, phi, index = lab.active) {
+  const light = lab.lights[index];
+  light.theta = clampTheta(theta);
+  light.phi = wrapPhi(phi);
+  const row = $(`.light-row[data-light="${index}"]`);
+  if (row) {
+    $(".theta", row).value = light.theta;
+    $(".phi", row).value = light.phi;
+    $(".theta-text", row).textContent = `${formatG(light.theta)}°`;
+    $(".phi-text", row).textContent = `${formatG(light.phi)}°`;
+  }
   scheduleRender();
+}
+
+function setActiveLight(index) {
+  lab.active = index;
+  document.querySelectorAll(".light-row").forEach((row) => {
+    row.classList.toggle("active", lab.lights.length > 1 && Number(row.dataset.light) === index);
+  });
+}
+
+/** One row of controls per light: theta_i, phi_i (degrees), colour, remove. */
+function buildLights() {
+  const rows = lab.lights.map((light, i) => {
+    const first = i === 0;
+    const theta = el("input", { type: "range", class: "theta", min: 0, max: 90, step: 0.5,
+      ...(first ? { id: "light-theta" } : {}) });
+    const phi = el("input", { type: "range", class: "phi", min: -180, max: 180, step: 1,
+      ...(first ? { id: "light-phi" } : {}) });
+    theta.addEventListener("input", () => setLight(Number(theta.value), lab.lights[i].phi, i));
+    phi.addEventListener("input", () => setLight(lab.lights[i].theta, Number(phi.value), i));
+    const color = el("input", { type: "color", class: "light-color", value: toHex(light.rgb),
+      title: "colour of this light (its radiance, before exposure)" });
+    color.addEventListener("input", () => {
+      lab.lights[i].rgb = fromHex(color.value);
+      scheduleRender();
+    });
+    const thetaTip = "θi: angle between the light and the view direction, which is the normal at " +
+      "the sphere's centre (0° = light at the eye)";
+    const phiTip = "φi: azimuth of the light around the view direction (0° = from the right, " +
+      "90° = from the top)";
+    const row = el("span", { class: "light-row group", "data-light": i },
+      el("span", { class: "light-name" }, lab.lights.length > 1 ? `light ${i + 1}` : "light"),
+      el("label", { title: thetaTip }, "θi ", theta), el("span", { class: "theta-text deg" }),
+      el("label", { title: phiTip }, "φi ", phi), el("span", { class: "phi-text deg" }), color);
+    if (!first) {
+      row.append(el("button", { type: "button", class: "close", title: "remove this light",
+        onclick: () => {
+          lab.lights.splice(i, 1);
+          lab.active = 0;
+          buildLights();
+          fitEmbed();
+          scheduleRender();
+        } }, "×"));
+    }
+    row.addEventListener("pointerdown", () => setActiveLight(i));
+    return row;
+  });
+  $("#lights").replaceChildren(...rows);
+  lab.lights.forEach((light, i) => setLight(light.theta, light.phi, i));
+  $("#add-light").disabled = lab.lights.length >= MAX_LIGHTS;
+  setActiveLight(Math.min(lab.active, lab.lights.length - 1));
+}
+
+function addLight(light = null) {
+  if (lab.lights.length >= MAX_LIGHTS) return;
+  const first = lab.lights[0];
+  lab.lights.push(light || { theta: 60, phi: wrapPhi(first.phi + 180), rgb: [1, 1, 1] });
+  buildLights();
+  setActiveLight(lab.lights.length - 1);
+  fitEmbed();
+  scheduleRender();
+}
+
+/** Embedded in a slide: shrink the canvases until the page fits the frame unscrolled. */
+function fitEmbed() {
+  if (!lab.embed) return;
+  document.body.classList.toggle("single", lab.panels.length === 1);
+  const root = document.documentElement;
+  const apply = (px) => lab.panels.forEach((panel) => panel.displaySize(px));
+  let px = lab.size;
+  apply(px);
+  for (let k = 0; k < 6; k++) {
+    const over = Math.max(root.scrollHeight - innerHeight,
+      (root.scrollWidth - innerWidth) / Math.max(1, lab.panels.length));
+    if (over <= 0 || px <= 96) break;
+    px = Math.max(96, Math.floor(px - over - 2));
+    apply(px);
+  }
 }
 
 function addPanel(name, values) {
@@ -530,6 +694,7 @@ function addPanel(name, values) {
   const panel = new Panel(name, values);
   lab.panels.push(panel);
   $("#panels").append(panel.root);
+  fitEmbed();
   return panel;
 }
 
@@ -537,19 +702,36 @@ function removePanel(panel) {
   if (lab.panels.length <= 1) return;
   lab.panels.splice(lab.panels.indexOf(panel), 1);
   panel.root.remove();
+  fitEmbed();
   scheduleRender();
 }
 
-// -- URL hash: model=NAME&PARAM=VALUE...&model=NAME2...&light=THETA,PHI ----------------------
+// -- URL hash: model=NAME&PARAM=VALUE...&model=NAME2...&light=THETA,PHI[,R,G,B]...&ambient=R,G,B
+/** "r,g,b" (or one grey value) in 0..1 -> [r, g, b], or null. */
+function parseRgb(text) {
+  let rgb = text.split(",").map(Number);
+  if (rgb.length === 1) rgb = [rgb[0], rgb[0], rgb[0]];
+  return rgb.length === 3 && rgb.every((c) => Number.isFinite(c) && c >= 0) ? rgb : null;
+}
+
 function readHash() {
   const params = new URLSearchParams(location.hash.slice(1));
   const panels = [];
+  const lights = [];
   for (const [key, value] of params) {
     if (key === "model") panels.push({ name: value, values: {} });
     else if (key === "light") {
-      const [theta, phi] = value.split(",").map(Number);
-      if (Number.isFinite(theta)) lab.light = { theta, phi: Number.isFinite(phi) ? phi : 0 };
-      else lab.notes.push(`light=${value}: write THETA,PHI in degrees`);
+      const [theta, phi, ...rest] = value.split(",").map(Number);
+      const rgb = rest.length ? parseRgb(rest.join(",")) : [1, 1, 1];
+      if (!Number.isFinite(theta) || (rest.length && !rgb)) {
+        lab.notes.push(`light=${value}: write THETA,PHI in degrees, optionally ,R,G,B`);
+      } else if (lights.length < MAX_LIGHTS) {
+        lights.push({ theta: clampTheta(theta), phi: wrapPhi(Number.isFinite(phi) ? phi : 0), rgb });
+      }
+    } else if (key === "ambient") {
+      const rgb = parseRgb(value);
+      if (rgb) lab.ambient = rgb;
+      else lab.notes.push(`ambient=${value}: write R,G,B (each 0 or more)`);
     } else if (key === "exposure") lab.exposure = Number(value) || 0;
     else if (key === "size") lab.size = Math.min(Math.max(Math.round(Number(value)) || 384, 32), 1024);
     else if (key === "embed") lab.embed = value !== "0";
@@ -577,6 +759,7 @@ function readHash() {
     }
     panel.values = checked;
   }
+  if (lights.length) lab.lights = lights;
   return panels.filter((p) => p.name);
 }
 
@@ -590,7 +773,12 @@ function writeHash() {
       if (valueText(p, v) !== valueText(p, p.default)) parts.push(`${p.name}=${valueText(p, v)}`);
     }
   }
-  parts.push(`light=${formatG(lab.light.theta)},${formatG(lab.light.phi)}`);
+  for (const light of lab.lights) {
+    const white = light.rgb.every((c) => c === 1);
+    const rgb = white ? "" : `,${light.rgb.map(formatG).join(",")}`;
+    parts.push(`light=${formatG(light.theta)},${formatG(light.phi)}${rgb}`);
+  }
+  if (lab.ambient.some((c) => c)) parts.push(`ambient=${lab.ambient.map(formatG).join(",")}`);
   if (lab.exposure) parts.push(`exposure=${formatG(lab.exposure)}`);
   if (lab.size !== 384) parts.push(`size=${lab.size}`);
   if (lab.cosWeighted) parts.push("cos=1");
@@ -628,11 +816,24 @@ async function load() {
 
 function buildPage() {
   document.body.classList.toggle("embed", lab.embed);
-  $("#light-theta").addEventListener("input", (e) => setLight(Number(e.target.value), lab.light.phi));
-  $("#light-phi").addEventListener("input", (e) => setLight(lab.light.theta, Number(e.target.value)));
+  $("#add-light").addEventListener("click", () => addLight());
+  $("#ambient").value = toHex(lab.ambient);
+  $("#ambient").addEventListener("input", (e) => {
+    lab.ambient = fromHex(e.target.value);
+    scheduleRender();
+  });
+  const showExposure = () => {
+    $("#exposure-text").textContent = `${lab.exposure > 0 ? "+" : ""}${formatG(lab.exposure)}`;
+  };
   $("#exposure").value = lab.exposure;
+  showExposure();
   $("#exposure").addEventListener("input", (e) => {
     lab.exposure = Number(e.target.value);
+    showExposure();
+    scheduleRender();
+  });
+  addEventListener("resize", () => {
+    fitEmbed();
     scheduleRender();
   });
   $("#cos-weighted").checked = lab.cosWeighted;
@@ -670,7 +871,8 @@ async function main() {
   for (const p of panels) addPanel(p.name, p.values);
   $("#notes").textContent = lab.notes.join("\n");
   $("#notes").hidden = !lab.notes.length;
-  setLight(lab.light.theta, lab.light.phi);
+  buildLights();
+  fitEmbed();
   if (pending) cancelAnimationFrame(pending);
   pending = 0;
   renderNow();
@@ -691,10 +893,29 @@ window.brdfLab = {
   state: lab,
   panel: (i = 0) => lab.panels[i],
   renderNow,
-  setLight: (theta, phi) => {
-    setLight(theta, phi);
+  setLight: (theta, phi, index = 0) => {
+    setLight(theta, phi, index);
     return renderNow();
   },
+  /** Replaces the lights: [{theta, phi, rgb}], and the ambient radiance [r, g, b]. */
+  setLights(lights, ambient = [0, 0, 0]) {
+    lab.lights = lights.map((l) => ({ theta: l.theta, phi: l.phi, rgb: l.rgb || [1, 1, 1] }));
+    lab.ambient = ambient;
+    $("#ambient").value = toHex(ambient);
+    lab.active = 0;
+    buildLights();
+    fitEmbed();
+    return renderNow();
+  },
+  addLight: () => {
+    addLight();
+    return renderNow();
+  },
+  /** Where the page's controls are (for layout tests): every range input's box. */
+  sliderBoxes: () => [...document.querySelectorAll("input[type=range]")].map((s) => {
+    const r = s.getBoundingClientRect();
+    return { left: r.left, top: r.top, right: r.right, bottom: r.bottom };
+  }),
   setModel(i, name, values = {}) {
     lab.panels[i].setModel(name, values);
     return renderNow();
@@ -714,6 +935,13 @@ window.brdfLab = {
   },
   /** Polar probe values of panel i (181 x RGBA, theta_o = -90..90). */
   readLobe: (i = 0) => Array.from(lab.panels[i].lobe || []),
+  /** The delta spike of panel i: its RGB reflectance (null for other models) and its
+   * drawn length as a fraction of the polar plot's radius. */
+  spike: (i = 0) => {
+    const panel = lab.panels[i];
+    const g = panel.polarGeometry;
+    return { rgb: panel.spike, length: g ? g.spikeLength / g.radius : 0 };
+  },
   loadModel(label, code) {
     const name = addModelText(label, code);
     lab.panels.forEach((p) => p.fillPicker());
