@@ -15,8 +15,29 @@ pytestmark = pytest.mark.skipif(
     reason="needs node, npm and Chromium (apt-get install nodejs npm chromium)",
 )
 
-SCREENSHOT_SLIDES = {0: "title", 4: "definition", 15: "sun_moon", 21: "phong_figures",
-                     29: "cook_torrance_terms"}
+# Slides (by their heading) saved as screenshots besides every live demo.
+SCREENSHOT_SLIDES = {"BRDFs": "title", "The BRDF: definition": "definition",
+                     "Lambert's sun and moon": "sun_moon", "The Phong exponent": "phong_figures",
+                     "Cook-Torrance: the terms": "cook_torrance_terms"}
+
+# In a demo's frame: where every visible control and canvas is, and how far the page scrolls.
+LAYOUT = """() => {
+  const boxes = [...document.querySelectorAll("input, select, button, canvas")]
+    .filter((e) => e.getClientRects().length && getComputedStyle(e).visibility !== "hidden")
+    .map((e) => { const r = e.getBoundingClientRect();
+      const what = e.tagName + (e.type ? ":" + e.type : "") + "." + e.className;
+      return { what,
+               left: r.left, top: r.top, right: r.right, bottom: r.bottom }; });
+  const root = document.documentElement;
+  return { boxes, width: innerWidth, height: innerHeight,
+           scroll: [root.scrollWidth - innerWidth, root.scrollHeight - innerHeight],
+           sliders: document.querySelectorAll("input[type=range]").length };
+}"""
+
+# Drawn pixels (alpha > 0) of a panel's polar plot, a 2D canvas.
+POLAR_PIXELS = """i => { const c = brdfLab.panel(i).polar;
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data; let n = 0;
+  for (let k = 3; k < d.length; k += 4) if (d[k] > 0) n++; return n / (c.width * c.height); }"""
 
 
 @pytest.fixture(scope="module")
@@ -26,6 +47,8 @@ def deck(output_dir):
     outdir = output_dir / "deck"
     if outdir.exists():
         shutil.rmtree(outdir)
+    for old in output_dir.glob("slide_*.png"):  # slide numbers move when slides are added
+        old.unlink()
     assert main(["slides", "build", str(outdir)]) == 0
     return outdir
 
@@ -70,6 +93,10 @@ def test_every_slide_renders(deck, deck_page, output_dir):
     info = deck_info(deck)
     demo_slides = {d["slide"]: d["hash"] for d in info["demos"]}
     assert deck_page.evaluate("Reveal.getTotalSlides()") == info["count"]
+    headings = deck_page.evaluate(
+        "[...document.querySelectorAll('.reveal .slides > section')]"
+        ".map(s => (s.querySelector('h1, h2') || {}).textContent || '')")
+    shots = {headings.index(h): name for h, name in SCREENSHOT_SLIDES.items()}
     for index in range(info["count"]):
         deck_page.evaluate(f"Reveal.slide({index})")
         deck_page.wait_for_timeout(50)
@@ -92,11 +119,33 @@ def test_every_slide_renders(deck, deck_page, output_dir):
                     " return n / (s.width * s.height); })()"
                 )
                 assert lit > 0.01, f"slide {index} panel {i}: the sphere is (nearly) empty"
+                drawn = frame.evaluate(POLAR_PIXELS, i)
+                assert drawn > 0.01, f"slide {index} panel {i}: the polar plot is empty"
+            check_demo_fits(deck_page, frames[0], frame, index)
             deck_page.screenshot(path=output_dir / f"slide_{index:02d}_demo.png")
-        elif index in SCREENSHOT_SLIDES:
-            name = f"slide_{index:02d}_{SCREENSHOT_SLIDES[index]}.png"
+        elif index in shots:
+            name = f"slide_{index:02d}_{shots[index]}.png"
             deck_page.screenshot(path=output_dir / name)
         assert deck_page.errors == [], f"slide {index}: {deck_page.errors}"
+
+
+def check_demo_fits(deck_page, iframe, frame, index: int) -> None:
+    """The demo's frame lies on the slide, and every control and canvas of the lab lies
+    inside the frame: nothing needs scrolling during the lecture."""
+    slide = deck_page.evaluate(
+        "(() => { const r = document.querySelector('.reveal .slides').getBoundingClientRect();"
+        " return { left: r.left, top: r.top, right: r.right, bottom: r.bottom }; })()")
+    box = iframe.bounding_box()
+    assert box["y"] + box["height"] <= slide["bottom"] + 1, f"slide {index}: the demo runs off"
+    assert box["x"] >= slide["left"] - 1 and box["x"] + box["width"] <= slide["right"] + 1
+    layout = frame.evaluate(LAYOUT)
+    assert layout["scroll"][0] <= 0 and layout["scroll"][1] <= 0, (
+        f"slide {index}: the demo scrolls by {layout['scroll']} px")
+    assert layout["sliders"] >= 3  # the light's two and at least one parameter or exposure
+    for b in layout["boxes"]:
+        inside = (b["left"] >= -0.5 and b["top"] >= -0.5 and b["right"] <= layout["width"] + 0.5
+                  and b["bottom"] <= layout["height"] + 0.5)
+        assert inside, f"slide {index}: {b['what']} is outside the demo's frame: {b}"
 
 
 def test_pdf(deck, deck_page, tmp_path):

@@ -495,7 +495,7 @@ function drawPolar(canvas, values, thetaI, spike) {
   const h = canvas.height;
   // Text the same size on screen whatever the canvas is scaled to (embedded demos shrink it).
   const shown = canvas.clientWidth || w;
-  const font = Math.round(((lab.embed ? 15 : 12) * w) / shown);
+  const font = Math.round(((lab.embed ? 16 : 12) * w) / shown);
   const cx = w / 2;
   const cy = h - Math.round(font * 0.6);
   const radius = Math.min(w / 2 - 2.2 * font, h - 4.1 * font);
@@ -523,19 +523,21 @@ function drawPolar(canvas, values, thetaI, spike) {
     ctx.stroke();
     ctx.setLineDash([]);
   };
-  const label = (text, angleDeg, r, color) => {
+  const label = (text, angleDeg, r, color, dx = 0) => {
     ctx.fillStyle = color;
     ctx.textAlign = "center";
     ctx.textBaseline = "middle";
-    ctx.fillText(text, ...at(angleDeg, r));
+    const [x, y] = at(angleDeg, r);
+    ctx.fillText(text, x + dx, y);
     ctx.textAlign = "left";
     ctx.textBaseline = "alphabetic";
   };
   ray(-thetaI, radius, "#e0a030", []); // toward the light
   ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
-  label("N", 0, radius + 0.7 * font, "#aaa");
-  label("L", -thetaI, radius + 0.8 * font, "#e0a030");
-  label("R", thetaI, radius + 0.8 * font, "#aaa");
+  // Near normal incidence L and R would sit on N: then only L and R, either side.
+  if (thetaI >= 12) label("N", 0, radius + 0.7 * font, "#aaa");
+  label("L", -thetaI, radius + 0.8 * font, "#e0a030", thetaI < 12 ? -0.5 * font : 0);
+  label("R", thetaI, radius + 0.8 * font, "#aaa", thetaI < 12 ? 0.5 * font : 0);
   const lum = [];
   let peak = 0;
   for (let i = 0; i < POLAR_STEPS; i++) {
@@ -550,7 +552,7 @@ function drawPolar(canvas, values, thetaI, spike) {
   const spikeLum = spike ? luma(...spike) : 0;
   const scale = spike ? Math.max(peak, 1) : peak;
   const what = lab.cosWeighted ? "f_r cos θo" : "f_r";
-  ctx.fillStyle = "#aaa";
+  ctx.fillStyle = "#bbb";
   ctx.fillText(`${what}, plane of incidence`, 2, font);
   const circle = spike && peak < 1 ? "1 (all the light)" : `${formatG(round(peak))} sr⁻¹`;
   ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}` : "f_r = 0 in this plane", 2, 2.2 * font);
