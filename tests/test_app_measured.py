@@ -102,6 +102,8 @@ def test_fit_preset_opens_with_measured_and_fitted_overlaid(qtbot, window, fit_p
 
 
 def test_open_binary_matches_the_renderer(qtbot, window, table_file, renderer, output_dir):
+    texts = [a.text() for a in window.menuBar().actions()[0].menu().actions()]
+    assert "Open measured BRDF (.binary)…" in texts
     state = window.open_file(table_file)  # what File > Open does for a .binary
     assert state is not None and state.model.name == "measured" and state.label == "ggx"
     assert set(window.params.controls) == {"interpolation", "gain"}

@@ -25,13 +25,24 @@ from lab.render import direction, plane_of_incidence
 MAX_ORDER = 16
 SERIES_COLOR = (255, 210, 0)
 GRID = (48, 96)  # Gauss-Legendre nodes in cos(theta) x uniform phi: exact enough to order 16
+FAST_GRID = (24, 48)  # while a slider moves; the full grid refines a moment later
 
 
 @lru_cache(maxsize=2)
-def grid_basis(n_theta: int, n_phi: int, order: int) -> tuple[sh.Grid, np.ndarray]:
-    """The quadrature grid and the harmonics on it (the same for every light and model)."""
-    grid = sh.hemisphere_grid(n_theta, n_phi)
-    return grid, sh.real_sh(order, grid.theta, grid.phi)
+def projector(n_theta: int, n_phi: int) -> sh.Projector:
+    """Harmonics on the quadrature grid (the same for every light and model)."""
+    return sh.Projector(MAX_ORDER, sh.hemisphere_grid(n_theta, n_phi))
+
+
+@lru_cache(maxsize=8)
+def plane_basis(phi_i: float) -> tuple[np.ndarray, np.ndarray]:
+    """theta_o and the harmonics at the plane of incidence's directions (1 deg steps).
+
+    The directions depend on phi_i alone, so dragging theta_i reuses them.
+    """
+    theta_o, V = plane_of_incidence(0.0, phi_i, step=1.0)
+    theta = np.arccos(np.clip(V[:, 2], -1.0, 1.0))
+    return theta_o, sh.real_sh(MAX_ORDER, theta, np.arctan2(V[:, 1], V[:, 0]))
 
 
 class SettingSpin(QSpinBox):
@@ -66,31 +77,22 @@ class SHData:
         return self.plane_basis[:, :n] @ self.coefficients[:n]
 
 
-def sh_data(renderer, state: ModelState, theta_i: float, phi_i: float) -> SHData:
+def sh_data(renderer, state: ModelState, theta_i: float, phi_i: float,
+            grid: tuple[int, int] = GRID) -> SHData:
     """Project the model's lobe (from its GLSL) for light (theta_i, phi_i) on harmonics."""
-    grid, basis = grid_basis(*GRID, MAX_ORDER)
-    V = grid.directions
+    proj = projector(*grid)
+    V = proj.grid.directions
     L = np.repeat(direction(theta_i, phi_i)[None], len(V), axis=0)
     f = renderer.probe(state.model, state.values, L, V).astype(np.float64)
     lobe = np.nan_to_num(f @ LUMA * V[:, 2])[:, None]
-    coefficients = sh.project(lobe, grid, MAX_ORDER)
-    # Relative error for every order at once: add one degree's block at a time.
-    norm = math.sqrt(float((grid.weight * lobe[:, 0] ** 2).sum()))
-    approx = np.zeros(len(V))
-    errors = []
-    for order in range(MAX_ORDER + 1):
-        block = slice(order * order, (order + 1) ** 2)
-        approx += basis[:, block] @ coefficients[block, 0]
-        residual = math.sqrt(float((grid.weight * (approx - lobe[:, 0]) ** 2).sum()))
-        errors.append(residual / norm if norm > 0 else 0.0)
+    coefficients = proj.project(lobe)
+    errors = proj.errors(lobe, coefficients)
     polar = renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
-    theta_o, Vp = plane_of_incidence(theta_i, phi_i, step=1.0)
-    plane_basis = sh.real_sh(MAX_ORDER, np.arccos(np.clip(Vp[:, 2], -1.0, 1.0)),
-                             np.arctan2(Vp[:, 1], Vp[:, 0]))
+    theta_o, basis = plane_basis(float(phi_i))
     plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA)
     finite = plane[np.abs(theta_o) <= 87.0]
     peak = float(finite.max()) if finite.size else 0.0
-    return SHData(coefficients[:, 0], np.array(errors), theta_o, plane, plane_basis, peak)
+    return SHData(coefficients[:, 0], errors, theta_o, plane, basis, peak)
 
 
 class SHView(View):
@@ -128,10 +130,17 @@ class SHView(View):
             [[(k, str(k)) for k in range(0, MAX_ORDER + 1, 8)]])
         self.error_plot.setLogMode(False, True)
         self.error_plot.setMouseEnabled(False, False)
-        self.error_curve = self.error_plot.plot(symbol="o", symbolSize=4)
-        self.error_mark = self.error_plot.plot(symbol="o", symbolSize=10, pen=None)
+        self.error_curve = self.error_plot.plot()
+        self.order_mark = pg.InfiniteLine(angle=90, pen=pg.mkPen(SERIES_COLOR, width=1.5))
+        self.error_plot.addItem(self.order_mark)
+        self.info.setToolTip("left: f_r cos θo in the plane of incidence (solid) and its "
+                             "spherical-harmonics series (dashed yellow); right: the "
+                             "relative L2 error over the hemisphere vs order (yellow: L)")
         self.data: SHData | None = None
         self.state: ModelState | None = None
+        self.shown: tuple = ()
+        self.top = 0.0
+        self.low = 1
         self.setMinimumWidth(250)  # two plots side by side
 
     def subject(self) -> ModelState | None:
@@ -155,34 +164,48 @@ class SHView(View):
         self.state = state
         self.cache = {k: v for k, v in self.cache.items() if state is not None and k == id(state)}
         self.data = None
+        grid = FAST_GRID if fast else GRID
         if state is not None and not state.model.delta:
             key = state_key(state, s["theta_i"], s["phi_i"])
-            self.data = self.cached(state, key, lambda: sh_data(
-                self.renderer, state, s["theta_i"], s["phi_i"]))
+            hit = self.cache.get(id(state))
+            if hit is not None and hit[0] == (*key, GRID):
+                grid = GRID  # the full result is at hand: no need for a coarse one
+            self.data = self.cached(state, (*key, grid), lambda: sh_data(
+                self.renderer, state, s["theta_i"], s["phi_i"], grid))
         data = self.data
         if data is None:
-            for curve in (self.lobe_curve, self.series_curve, self.error_curve,
-                          self.error_mark):
+            self.shown = ()
+            for curve in (self.lobe_curve, self.series_curve, self.error_curve):
                 curve.setData([], [])
             delta = state is not None and state.model.delta
             self.info.setText("an ideal mirror has no finite lobe to expand" if delta
                               else "no model to show")
             return False
         order = self.order
-        series = data.reconstruction(order)
-        self.lobe_curve.setData(data.theta_o, data.plane, pen=pg.mkPen(state.color, width=2))
-        self.series_curve.setData(data.theta_o, series, pen=pg.mkPen(
+        shown = (id(data), order, state.color, s["theta_i"])
+        if shown == self.shown:
+            return grid != GRID  # nothing new: a frame for another model's change
+        self.shown = shown
+        pen = pg.mkPen(state.color, width=2)
+        self.lobe_curve.setData(data.theta_o, data.plane, pen=pen)
+        self.series_curve.setData(data.theta_o, data.reconstruction(order), pen=pg.mkPen(
             SERIES_COLOR, width=1.5, style=Qt.PenStyle.DashLine))
         self.mirror.setValue(s["theta_i"])
+        # Ranges change only when the data leave them: new ticks cost more than the curves.
         top = max(data.peak, 1e-9)
-        self.lobe_plot.setRange(xRange=(-90, 90), yRange=(-0.35 * top, 1.15 * top), padding=0)
-        orders = np.arange(MAX_ORDER + 1)
+        if not 0.7 * self.top <= top <= self.top:
+            self.top = 1.15 * top
+            self.lobe_plot.setRange(xRange=(-90, 90), yRange=(-0.3 * self.top, self.top),
+                                    padding=0)
         errors = np.maximum(data.errors, 1e-6)  # log axis
-        self.error_curve.setData(orders, errors, pen=pg.mkPen(state.color, width=1.5))
-        self.error_mark.setData([order], [errors[order]], symbolBrush=SERIES_COLOR)
+        low = math.floor(math.log10(errors.min()))
+        if low != self.low:
+            self.low = low
+            self.error_plot.setRange(xRange=(-0.5, MAX_ORDER + 0.5), yRange=(low, 0.2),
+                                     padding=0)
+        self.error_curve.setData(np.arange(MAX_ORDER + 1), errors, pen=pen)
+        self.order_mark.setValue(order)
         self.info.setText(f"{sh.coefficient_count(order)} coefficients, "
-                          f"error {100 * data.errors[order]:.2g} %")
-        self.info.setToolTip("left: f_r cos θo in the plane of incidence (solid) and its "
-                             "spherical-harmonics series (dashed yellow); right: the "
-                             "relative L2 error over the hemisphere vs order")
-        return False
+                          f"error {100 * data.errors[order]:.2g} %"
+                          + (" (coarse)" if grid != GRID else ""))
+        return grid != GRID

@@ -219,7 +219,8 @@ class ModelList(QWidget):
         add = QPushButton("Add")
         add.clicked.connect(self.add_selected)
         opener = QPushButton("Open…")
-        opener.setToolTip("open a model .glsl file or a BRDF Explorer .brdf file (watched)")
+        opener.setToolTip("open a model .glsl file or a BRDF Explorer .brdf file (watched), "
+                          "or a MERL .binary table (the measured model)")
         opener.clicked.connect(self.open_file.emit)
         row.addWidget(self.library, 1)
         row.addWidget(add)

@@ -66,17 +66,55 @@ def hemisphere_grid(n_theta: int = 96, n_phi: int = 192) -> Grid:
     return Grid(tt.ravel(), pp.ravel(), ww.ravel())
 
 
-def project(lobe: np.ndarray, grid: Grid, order: int) -> np.ndarray:
+def odd_in_z(order: int) -> np.ndarray:
+    """1 for the harmonics that are odd in z (l + |m| odd), 0 for the others."""
+    index = np.arange(coefficient_count(order))
+    degree = np.floor(np.sqrt(index)).astype(int)
+    m = index - degree * degree - degree
+    return ((degree + np.abs(m)) % 2 == 1).astype(np.float64)
+
+
+def project(lobe: np.ndarray, grid: Grid, order: int,
+            basis: np.ndarray | None = None) -> np.ndarray:
     """Coefficients ((order + 1)^2, channels) of the odd extension of `lobe` (n, channels).
 
     The lower hemisphere contributes as much as the upper one for harmonics that are odd
-    in z (l + m odd) and cancels it for the others.
+    in z (l + m odd) and cancels it for the others. `basis` may hold real_sh(order) on
+    the grid already (it is the same for every lobe).
     """
-    Y = real_sh(order, grid.theta, grid.phi)
-    degree = np.floor(np.sqrt(np.arange(Y.shape[1]))).astype(int)
-    m = np.arange(Y.shape[1]) - degree * degree - degree
-    odd = ((degree + np.abs(m)) % 2 == 1).astype(np.float64)
-    return 2.0 * odd[:, None] * (Y * grid.weight[:, None]).T @ lobe
+    Y = basis[:, : coefficient_count(order)] if basis is not None else real_sh(
+        order, grid.theta, grid.phi)
+    return 2.0 * odd_in_z(order)[:, None] * (Y * grid.weight[:, None]).T @ lobe
+
+
+class Projector:
+    """Projection on one grid up to one order, with the harmonics computed once.
+
+    For many lobes on the same grid (the app's view, as the light moves): projecting is
+    then one matrix product.
+    """
+
+    def __init__(self, order: int, grid: Grid):
+        self.order, self.grid = order, grid
+        self.basis = real_sh(order, grid.theta, grid.phi)  # (n, (order + 1)^2)
+        weighted = self.basis * grid.weight[:, None]
+        self.analysis = np.ascontiguousarray(2.0 * odd_in_z(order)[:, None] * weighted.T)
+
+    def project(self, lobe: np.ndarray) -> np.ndarray:
+        """As project(lobe, grid, order): coefficients ((order + 1)^2, channels)."""
+        return self.analysis @ lobe
+
+    def errors(self, lobe: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
+        """Relative L2 error over the hemisphere of the series of every order 0..order."""
+        w = self.grid.weight[:, None]
+        norm = float(np.sqrt((w * lobe**2).sum()))
+        approx = np.zeros_like(lobe, dtype=np.float64)
+        out = np.empty(self.order + 1)
+        for order in range(self.order + 1):  # add one degree's block at a time
+            block = slice(order * order, (order + 1) ** 2)
+            approx += self.basis[:, block] @ coefficients[block]
+            out[order] = float(np.sqrt((w * (approx - lobe) ** 2).sum())) / max(norm, 1e-300)
+        return out
 
 
 def reconstruct(coefficients: np.ndarray, theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
