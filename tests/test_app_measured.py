@@ -198,14 +198,41 @@ def test_app_command_opens_a_binary(qtbot, table_file):
     found = {}
 
     def inspect() -> None:
-        win = next(w for w in QApplication.topLevelWidgets() if isinstance(w, MainWindow))
-        found["models"] = [(m.model.name, m.label) for m in win.lab.models]
-        win.close()
-        QApplication.instance().quit()
+        try:
+            win = next(w for w in QApplication.topLevelWidgets()
+                       if isinstance(w, MainWindow) and w.isVisible())
+            found["models"] = [(m.model.name, m.label) for m in win.lab.models]
+            win.close()
+        finally:
+            QApplication.instance().quit()  # never leave the test waiting in exec()
 
     QTimer.singleShot(500, inspect)
     assert main(["app", str(table_file)]) == 0
     assert found["models"] == [("measured", "ggx")]
+
+
+def test_app_command_opens_a_fit_preset(qtbot, fit_preset, capsys):
+    found = {}
+
+    def inspect() -> None:
+        try:
+            win = next(w for w in QApplication.topLevelWidgets()
+                       if isinstance(w, MainWindow) and w.isVisible())
+            found["models"] = [m.label for m in win.lab.models]
+            found["title"] = win.windowTitle()
+            win.close()
+        finally:
+            QApplication.instance().quit()
+
+    QTimer.singleShot(500, inspect)
+    assert main(["app", str(fit_preset)]) == 0
+    assert found["models"] == ["measured", "ggx fit"] and "ggx fit" in found["title"]
+    # A damaged table stops the command with one line, before any window opens.
+    broken = fit_preset.parent / "broken.binary"
+    broken.write_bytes(b"\0" * 20)
+    assert main(["app", str(broken)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "broken.binary" in err
 
 
 def test_render_measured_command(table_file, tmp_path, capsys):

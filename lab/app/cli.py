@@ -24,7 +24,7 @@ def has_display() -> bool:
 def register(subparsers) -> None:
     p = subparsers.add_parser("app", help="open the desktop lab (the default command)")
     p.add_argument("models", nargs="*",
-                   help="models, .glsl/.brdf files or MERL .binary tables to start with")
+                   help="models, .glsl/.brdf files, MERL .binary tables or a preset .toml")
     p.add_argument("--preset", metavar="FILE.toml", help="start from a saved or shipped preset")
     p.add_argument("--presenter", action="store_true", help="large fonts and full screen")
     p.add_argument("--bench", action="store_true",
@@ -76,6 +76,15 @@ def cmd_app(args) -> int:
     launched = time.perf_counter()
     if not has_display():
         return gallery_offscreen(args.gallery_dir)
+    # A preset given as a file (`brdf-lab app fit.toml`) is the same as --preset.
+    presets = [m for m in args.models if m.endswith(".toml")]
+    if presets and (args.preset or len(presets) > 1):
+        from lab.cli import UsageError
+
+        raise UsageError("give one preset (FILE.toml or --preset FILE.toml)")
+    if presets:
+        args.preset = presets[0]
+        args.models = [m for m in args.models if not m.endswith(".toml")]
     preset = resolve_preset(args.preset) if args.preset else None
     from PyQt6.QtWidgets import QApplication
 
