@@ -199,8 +199,9 @@ class Panel {
     this.errorBox = el("pre", { class: "errors", hidden: "" });
     this.controls = el("div", { class: "controls" });
     this.formula = el("div", { class: "formula" });
+    // Controls right under the pictures they change; the formula after them.
     this.root.append(el("header", {}, this.picker, this.closeButton), this.canvas, this.polar,
-      this.errorBox, this.formula, this.controls);
+      this.errorBox, this.controls, this.formula);
     this.gl = this.canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
     if (!this.gl) {
       this.showError("this browser has no WebGL2");
@@ -553,7 +554,8 @@ function drawPolar(canvas, values, thetaI, spike) {
   const scale = spike ? Math.max(peak, 1) : peak;
   const what = lab.cosWeighted ? "f_r cos θo" : "f_r";
   ctx.fillStyle = "#bbb";
-  ctx.fillText(`${what}, plane of incidence`, 2, font);
+  const title = `${what}, plane of incidence${lab.lights.length > 1 ? " of light 1" : ""}`;
+  ctx.fillText(ctx.measureText(title).width < w - 4 ? title : `${what}, light 1`, 2, font);
   const circle = spike && peak < 1 ? "1 (all the light)" : `${formatG(round(peak))} sr⁻¹`;
   ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}` : "f_r = 0 in this plane", 2, 2.2 * font);
   if (peak > 0) {
@@ -641,7 +643,8 @@ function buildLights() {
       "the sphere's centre (0° = light at the eye)";
     const phiTip = "φi: azimuth of the light around the view direction (0° = from the right, " +
       "90° = from the top)";
-    const row = el("span", { class: "light-row group", "data-light": i },
+    const row = el("span", { class: "light-row group", "data-light": i,
+      title: lab.lights.length > 1 ? "dragging on a sphere moves the framed light: click a row to choose" : "" },
       el("span", { class: "light-name" }, lab.lights.length > 1 ? `light ${i + 1}` : "light"),
       el("label", { title: thetaTip }, "θi ", theta), el("span", { class: "theta-text deg" }),
       el("label", { title: phiTip }, "φi ", phi), el("span", { class: "phi-text deg" }), color);
@@ -672,6 +675,13 @@ function addLight(light = null) {
   setActiveLight(lab.lights.length - 1);
   fitEmbed();
   scheduleRender();
+}
+
+/** The ambient slider shows a grey level (an address may give any r,g,b). */
+function showAmbient() {
+  const [r, g, b] = lab.ambient;
+  $("#ambient").value = Math.max(r, g, b);
+  $("#ambient-text").textContent = r === g && g === b ? formatG(r) : lab.ambient.map(formatG).join(",");
 }
 
 /** Embedded in a slide: shrink the canvases until the page fits the frame unscrolled. */
@@ -819,13 +829,15 @@ async function load() {
 function buildPage() {
   document.body.classList.toggle("embed", lab.embed);
   $("#add-light").addEventListener("click", () => addLight());
-  $("#ambient").value = toHex(lab.ambient);
+  showAmbient();
   $("#ambient").addEventListener("input", (e) => {
-    lab.ambient = fromHex(e.target.value);
+    const level = Number(e.target.value);
+    lab.ambient = [level, level, level];
+    showAmbient();
     scheduleRender();
   });
   const showExposure = () => {
-    $("#exposure-text").textContent = `${lab.exposure > 0 ? "+" : ""}${formatG(lab.exposure)}`;
+    $("#exposure-text").textContent = `×${formatG(round(Math.pow(2, lab.exposure)))}`;
   };
   $("#exposure").value = lab.exposure;
   showExposure();
@@ -903,7 +915,7 @@ window.brdfLab = {
   setLights(lights, ambient = [0, 0, 0]) {
     lab.lights = lights.map((l) => ({ theta: l.theta, phi: l.phi, rgb: l.rgb || [1, 1, 1] }));
     lab.ambient = ambient;
-    $("#ambient").value = toHex(ambient);
+    showAmbient();
     lab.active = 0;
     buildLights();
     fitEmbed();
