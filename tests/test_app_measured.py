@@ -18,7 +18,7 @@ from PyQt6.QtWidgets import QApplication  # noqa: E402
 from lab.app.renderer import AppRenderer  # noqa: E402
 from lab.app.window import MainWindow  # noqa: E402
 from lab.cli import main  # noqa: E402
-from lab.measured.merl import write_merl  # noqa: E402
+from lab.measured.merl import MerlTable, write_merl  # noqa: E402
 from lab.measured.model import measured_model  # noqa: E402
 from lab.measured.tabulate import tabulate  # noqa: E402
 from lab.models import load_model  # noqa: E402
@@ -147,6 +147,10 @@ def test_bad_binary_shows_an_error_and_the_app_runs_on(qtbot, window, table_file
     text = window.error_text()
     assert "broken.binary" in text and "truncated" in text and not window.error_dock.isHidden()
     assert [m.model.name for m in window.lab.models] == ["phong"]
+    # A valid file too large for the GPU's 3D textures is refused the same way.
+    huge = write_merl(MerlTable(np.zeros((3, 4000, 1, 1))), tmp_path / "huge.binary")
+    assert window.open_measured(huge) is None
+    assert "huge.binary" in window.error_text() and "3D texture" in window.error_text()
     # A preset naming a missing table fails as a whole, with the file in the message.
     preset = tmp_path / "missing.toml"
     preset.write_text('[[model]]\nmodel = "measured"\ntable = "gone.binary"\n')

@@ -14,7 +14,7 @@ import moderngl
 import numpy as np
 
 from lab.measured.merl import MerlTable, read_merl
-from lab.models import Model, load_model
+from lab.models import Model, ModelError, load_model
 
 MODEL_FILE = Path(__file__).resolve().parent / "measured.glsl"
 # Texture unit of the table: above the units the views use for their own inputs (probe: 0, 1).
@@ -35,9 +35,18 @@ class MeasuredModel(Model):
         texture = self._textures.get(id(ctx))
         if texture is None:
             n_h, n_d, n_p = self.table.dims
+            limit = int(ctx.info.get("GL_MAX_3D_TEXTURE_SIZE", 256))
+            if max(n_h, n_d, n_p) > limit:
+                raise ModelError(f"the table has {self.table.dims} bins; this OpenGL takes at "
+                                 f"most {limit} per axis of a 3D texture: resample it",
+                                 self.table.path or "table")
             # Unmeasured (negative) entries become 0 here, so filtering never blends them in.
             texels = np.ascontiguousarray(np.maximum(self.table.rgb, 0.0), dtype=np.float32)
-            texture = ctx.texture3d((n_p, n_d, n_h), 3, texels.tobytes(), dtype="f4")
+            try:
+                texture = ctx.texture3d((n_p, n_d, n_h), 3, texels.tobytes(), dtype="f4")
+            except moderngl.Error as err:
+                raise ModelError(f"cannot upload the table as a texture ({err})",
+                                 self.table.path or "table") from None
             # The linear choice uses the texture unit's trilinear filter: phi_d is periodic,
             # the theta axes clamp at their edges. The nearest choice fetches texels itself.
             texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
