@@ -196,6 +196,10 @@ def test_sh_view_error_falls_with_order(qtbot, window, table_file, output_dir):
     settle(qtbot, window)
     assert view.state.model.name == "lambert"
     assert view.order_errors[1] < 1e-3 and view.order_errors[0] > 0.3
+    # An ideal mirror has no finite lobe: the view says so and draws nothing.
+    window.lab.add(load_model("mirror"))
+    settle(qtbot, window)
+    assert len(view.order_errors) == 0 and "mirror" in view.info.text()
 
 
 def test_app_command_opens_a_binary(qtbot, table_file):

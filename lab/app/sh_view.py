@@ -84,12 +84,14 @@ def sh_data(renderer, state: ModelState, theta_i: float, phi_i: float,
     V = proj.grid.directions
     L = np.repeat(direction(theta_i, phi_i)[None], len(V), axis=0)
     f = renderer.probe(state.model, state.values, L, V).astype(np.float64)
-    lobe = np.nan_to_num(f @ LUMA * V[:, 2])[:, None]
+    # Non-finite values (a user shader dividing by zero) would swamp every coefficient.
+    lobe = np.nan_to_num(f @ LUMA * V[:, 2], nan=0.0, posinf=0.0, neginf=0.0)[:, None]
     coefficients = proj.project(lobe)
     errors = proj.errors(lobe, coefficients)
     polar = renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
     theta_o, basis = plane_basis(float(phi_i))
-    plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA)
+    plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0,
+                          neginf=0.0)
     finite = plane[np.abs(theta_o) <= 87.0]
     peak = float(finite.max()) if finite.size else 0.0
     return SHData(coefficients[:, 0], errors, theta_o, plane, basis, peak)
