@@ -291,3 +291,18 @@ def test_labels_and_tooltips(lab_page):
     assert row.locator(".theta-text").inner_text() == f"{LIGHT[0]:g}°"
     assert row.locator(".phi-text").inner_text() == f"{LIGHT[1]:g}°"
     assert "θi" in row.inner_text() and "φi" in row.inner_text()
+
+
+def test_embed_in_a_small_frame(browser):
+    """Embedded in a frame too small for it, the lab shrinks its pictures and still draws."""
+    page = Page(browser, "model=mirror&model=phong&size=400&embed=1")
+    try:
+        page.page.set_viewport_size({"width": 700, "height": 260})
+        page.js("() => { dispatchEvent(new Event('resize')); brdfLab.renderNow(); }")
+        sizes = page.js("[...document.querySelectorAll('canvas.sphere')].map(c => c.clientWidth)")
+        assert all(96 <= s < 400 for s in sizes), sizes
+        assert page.js("brdfLab.errors(0) + brdfLab.errors(1)") == ""
+        assert page.js("brdfLab.spike(0)")["length"] == pytest.approx(0.9, rel=1e-5)
+        assert page.errors == []
+    finally:
+        page.page.close()

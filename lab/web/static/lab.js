@@ -496,10 +496,10 @@ function drawPolar(canvas, values, thetaI, spike) {
   const h = canvas.height;
   // Text the same size on screen whatever the canvas is scaled to (embedded demos shrink it).
   const shown = canvas.clientWidth || w;
-  const font = Math.round(((lab.embed ? 16 : 12) * w) / shown);
+  const font = Math.min(Math.round(((lab.embed ? 16 : 12) * w) / shown), Math.round(w / 14));
   const cx = w / 2;
   const cy = h - Math.round(font * 0.6);
-  const radius = Math.min(w / 2 - 2.2 * font, h - 4.1 * font);
+  const radius = Math.max(Math.min(w / 2 - 2.2 * font, h - 4.1 * font), 8);
   ctx.clearRect(0, 0, w, h);
   ctx.font = `${font}px system-ui, sans-serif`;
   ctx.lineWidth = 1;
