@@ -286,6 +286,11 @@ def parse_model(code: str, path: Path | str, expected_name: str | None = None) -
 
 def model_names() -> list[str]:
     """Names of the models in the library, sorted."""
+    if not MODEL_DIR.is_dir():
+        raise ModelError(
+            f"the shader library {MODEL_DIR} is missing: brdf-lab runs from its source tree; "
+            "install it with 'pip install -e .' in a clone"
+        )
     return sorted(p.stem for p in MODEL_DIR.glob("*.glsl"))
 
 
