@@ -68,14 +68,19 @@ def load(name: str, settings: list[str]):
 def load_measured(name: str, table: str | None, settings: list[str]):
     """The `measured` model for `render --table FILE.binary` (lab.measured)."""
     if name != "measured":
-        raise UsageError(f"--table is for the measured model: write "
-                         f"'brdf-lab render measured --table {table}', not {name!r}")
+        raise UsageError(
+            f"--table is for the measured model: write "
+            f"'brdf-lab render measured --table {table}', not {name!r}"
+        )
     if not table:
-        raise UsageError("the measured model needs its data: add --table FILE.binary "
-                         "(make one with 'brdf-lab tabulate MODEL -o FILE.binary')")
+        raise UsageError(
+            "the measured model needs its data: add --table FILE.binary "
+            "(make one with 'brdf-lab tabulate MODEL -o FILE.binary')"
+        )
     if not Path(table).is_file():
-        raise UsageError(f"{table}: no such file (make one with "
-                         f"'brdf-lab tabulate MODEL -o {table}')")
+        raise UsageError(
+            f"{table}: no such file (make one with 'brdf-lab tabulate MODEL -o {table}')"
+        )
     from lab.measured.model import measured_model
 
     model = measured_model(table)
@@ -114,12 +119,9 @@ def cmd_render(args) -> int:
         model, values = load(args.model, args.set)
     theta, phi = parse_light(args.light)
     out = check_output(args.output)
-    renderer = Renderer()
-    if args.view == "sphere":
-        image = renderer.sphere(model, values, (theta, phi), size=args.size)
-        plots.save_image(image, out, exposure=args.exposure)
-    else:
-        plots.save_view(renderer, args.view, model, values, theta, phi, out, size=args.size)
+    plots.save_render(
+        Renderer(), args.view, model, values, theta, phi, out, args.size, args.exposure
+    )
     print(f"wrote {out}")
     return 0
 
@@ -243,8 +245,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--view", choices=VIEWS, default="sphere")
     p.add_argument("--size", type=int, default=512, help="image size in pixels")
     p.add_argument("--exposure", type=float, default=0.0, help="exposure in stops (sphere)")
-    p.add_argument("--table", metavar="FILE.binary",
-                   help="the MERL table of the 'measured' model")
+    p.add_argument("--table", metavar="FILE.binary", help="the MERL table of the 'measured' model")
     p.add_argument("-o", "--output", required=True, metavar="OUT.png")
     p.set_defaults(func=cmd_render)
 

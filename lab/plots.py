@@ -77,6 +77,24 @@ def style_polar(ax, theta_i: float, what: str) -> None:
     ax.legend(loc="lower left", fontsize=8, bbox_to_anchor=(-0.1, -0.15))
 
 
+def save_render(
+    renderer,
+    view: str,
+    model: Model,
+    values,
+    theta: float,
+    phi: float,
+    out: str | Path,
+    size: int = 512,
+    exposure: float = 0.0,
+) -> None:
+    """Any view as a PNG: the sphere as an image, the others as labelled plots."""
+    if view == "sphere":
+        save_image(renderer.sphere(model, values, (theta, phi), size=size), out, exposure)
+    else:
+        save_view(renderer, view, model, values, theta, phi, out, size=size)
+
+
 def save_view(
     renderer,
     view: str,

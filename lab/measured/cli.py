@@ -21,8 +21,10 @@ def _dims(text: str) -> tuple[int, int, int]:
     except ValueError:
         dims = ()
     if len(dims) != 3 or any(n < 1 or n > 1024 for n in dims):
-        raise _usage(f"--dims {text!r} is malformed: write N_THETA_H,N_THETA_D,N_PHI_D "
-                     "(each 1..1024), e.g. 90,90,180")
+        raise _usage(
+            f"--dims {text!r} is malformed: write N_THETA_H,N_THETA_D,N_PHI_D "
+            "(each 1..1024), e.g. 90,90,180"
+        )
     return dims  # type: ignore[return-value]
 
 
@@ -76,8 +78,10 @@ def cmd_fit(args) -> int:
     for name in models:
         result = fitting.fit(samples, name, args.lobes, args.metric, evaluate=evaluate)
         results.append(result)
-        print(f"{name} ({args.lobes} lobe(s)): error {result.error:.5g} ({args.metric}), "
-              f"{result.seconds:.1f} s, {result.evaluations} evaluations")
+        print(
+            f"{name} ({args.lobes} lobe(s)): error {result.error:.5g} ({args.metric}), "
+            f"{result.seconds:.1f} s, {result.evaluations} evaluations"
+        )
         for k, values in enumerate(result.lobes, start=1):
             shown = ", ".join(
                 f"{n}={','.join(f'{c:.4g}' for c in v) if isinstance(v, tuple) else f'{v:.4g}'}"
@@ -95,8 +99,10 @@ def cmd_fit(args) -> int:
         best = min(r.error for r in results)
         for r in sorted(results, key=lambda r: r.error):
             count = sum(3 if isinstance(v, tuple) else 1 for v in r.lobes[0].values())
-            print(f"{r.model:15s} {count * len(r.lobes):6d} {r.error:10.5f} "
-                  f"{r.error / best if best > 0 else 1.0:6.2f}")
+            print(
+                f"{r.model:15s} {count * len(r.lobes):6d} {r.error:10.5f} "
+                f"{r.error / best if best > 0 else 1.0:6.2f}"
+            )
     return 0
 
 
@@ -115,16 +121,20 @@ def cmd_sh(args) -> int:
         from lab.measured.merl import lookup
 
         table = _read(args.table)
+
         def lobe_fn(L, V):
             return lookup(table, L, V, "linear")
+
         title = Path(args.table).name
     else:
         from lab import reference
         from lab.cli import load
 
         model, values = load(args.model or "ggx", args.set)
+
         def lobe_fn(L, V):
             return reference.brdf(model.name, values, L, V)
+
         title = model.name
     from lab.cli import check_output
 
@@ -151,13 +161,11 @@ def cmd_render_measured(args) -> int:
     if args.interpolation == "both":
         filter_figure(table, out, renderer, light=(theta, phi))
     else:
-        model = measured_model(table)
         values = {"interpolation": args.interpolation, "gain": args.gain}
-        if args.view == "sphere":
-            image = renderer.sphere(model, values, (theta, phi), size=args.size)
-            plots.save_image(image, out, exposure=args.exposure)
-        else:
-            plots.save_view(renderer, args.view, model, values, theta, phi, out, size=args.size)
+        model = measured_model(table)
+        plots.save_render(
+            renderer, args.view, model, values, theta, phi, out, args.size, args.exposure
+        )
     print(f"wrote {out}")
     return 0
 
@@ -173,22 +181,36 @@ def register(sub) -> None:
     p = sub.add_parser("tabulate", help="write an analytic model as a MERL .binary table")
     p.add_argument("model", help="model name (see 'brdf-lab models') or a .glsl file")
     p.add_argument("--set", action="append", metavar="NAME=VALUE", help="parameter value")
-    p.add_argument("--noise", type=float, default=0.0, metavar="SIGMA",
-                   help="relative Gaussian noise, e.g. 0.05")
+    p.add_argument(
+        "--noise",
+        type=float,
+        default=0.0,
+        metavar="SIGMA",
+        help="relative Gaussian noise, e.g. 0.05",
+    )
     p.add_argument("--seed", type=int, default=0, help="seed of the noise")
-    p.add_argument("--dims", default="90,90,180",
-                   help="bins theta_h,theta_d,phi_d (MERL: 90,90,180)")
+    p.add_argument(
+        "--dims", default="90,90,180", help="bins theta_h,theta_d,phi_d (MERL: 90,90,180)"
+    )
     p.add_argument("-o", "--output", required=True, metavar="FILE.binary")
     p.set_defaults(func=cmd_tabulate)
 
     p = sub.add_parser("fit", help="fit analytic models to a MERL .binary table")
     p.add_argument("table", metavar="FILE.binary")
-    p.add_argument("--model", action="append", choices=FIT_MODELS,
-                   help="model to fit (repeat for several; default cook_torrance)")
+    p.add_argument(
+        "--model",
+        action="append",
+        choices=FIT_MODELS,
+        help="model to fit (repeat for several; default cook_torrance)",
+    )
     p.add_argument("--compare", action="store_true", help="fit all four and print a table")
     p.add_argument("--lobes", type=int, choices=(1, 2), default=1, help="specular lobes")
-    p.add_argument("--metric", choices=("log", "linear"), default="log",
-                   help="compare log(1 + f cos) (default) or f cos")
+    p.add_argument(
+        "--metric",
+        choices=("log", "linear"),
+        default="log",
+        help="compare log(1 + f cos) (default) or f cos",
+    )
     p.add_argument("--samples", type=int, default=20000, help="table bins used for the fit")
     p.add_argument("--gpu", action="store_true", help="evaluate models with their shaders")
     p.add_argument("--outdir", default=".", help="folder for the presets and figures")
@@ -207,8 +229,12 @@ def register(sub) -> None:
     p = sub.add_parser("render-measured", help="render a view of a MERL .binary table")
     p.add_argument("table", metavar="FILE.binary")
     p.add_argument("--view", choices=VIEWS, default="sphere")
-    p.add_argument("--interpolation", choices=("linear", "nearest", "both"), default="linear",
-                   help="table lookup; 'both' draws the sphere with each, side by side")
+    p.add_argument(
+        "--interpolation",
+        choices=("linear", "nearest", "both"),
+        default="linear",
+        help="table lookup; 'both' draws the sphere with each, side by side",
+    )
     p.add_argument("--gain", type=float, default=1.0, help="multiplies the table")
     p.add_argument("--light", default="45,0", metavar="THETA,PHI")
     p.add_argument("--size", type=int, default=512)
@@ -219,4 +245,3 @@ def register(sub) -> None:
     p = sub.add_parser("measured-bench", help="load, render and fit timings of measured BRDFs")
     p.add_argument("--quick", action="store_true", help="fewer repetitions")
     p.set_defaults(func=cmd_bench)
-
