@@ -1,9 +1,10 @@
 """`brdf-lab watch FILE.glsl`: a small GLFW window for students editing a shader.
 
 Shows the lit sphere and the polar lobe of their model, reloads on save, prints compile
-errors with the file's line numbers (the last good version stays on screen) and, when the
-file sits in an exercise folder with a reference image (references/*sphere*.png), shows
-the reference and the difference beside it.
+errors with the file's line numbers (the last good version stays on screen). When the file
+is an exercise's student file, it is rendered exactly as the grader renders the exercise's
+sphere check (its parameters, lights and tone mapping; term exercises inside their library
+model) and shown beside the reference image and a difference image.
 """
 
 from __future__ import annotations
@@ -38,14 +39,45 @@ void main() { color = texture(u_image, uv); }
 """
 
 
-def find_reference(path: Path) -> Path | None:
-    """The exercise's reference sphere image, if the file belongs to an exercise."""
-    for folder in (path.parent, path.parent.parent):
-        for pattern in ("references/*sphere*.png", "reference*/*.png", "*reference*sphere*.png"):
-            found = sorted(folder.glob(pattern))
-            if found:
-                return found[0]
-    return None
+class ExerciseView:
+    """How the grader sees a student's file: its exercise, first sphere check, reference."""
+
+    def __init__(self, path: Path):
+        from lab.grading.exercise import load_exercise
+
+        self.exercise = load_exercise(path.parent)
+        self.check = next(c for c in self.exercise.checks if c.kind == "sphere")
+        self.reference_path = self.exercise.references / f"{self.check.name}.png"
+
+    @classmethod
+    def find(cls, path: Path) -> ExerciseView | None:
+        """The view for `path` if it is the student file of an exercise with a sphere check."""
+        from lab.grading.exercise import ExerciseError
+
+        if not (path.parent / "exercise.toml").is_file():
+            return None
+        try:
+            view = cls(path)
+        except (ExerciseError, StopIteration, OSError):
+            return None
+        if view.exercise.student_file != path.name or not view.reference_path.is_file():
+            return None
+        return view
+
+    def load(self, path: Path):
+        """The submission as the grader builds it (raises ModelError on a bad file)."""
+        from lab.grading.exercise import SubmissionError, build_model, read_submission
+
+        try:
+            return build_model(self.exercise, path, read_submission(path))
+        except SubmissionError as err:
+            raise ModelError(str(err)) from None
+
+    def sphere(self, renderer, model) -> np.ndarray:
+        """The sphere check's render, tone-mapped to 8-bit RGBA as its reference is."""
+        from lab.grading.checks import expected_value, render
+
+        return expected_value(render(renderer, model, self.check), self.check)
 
 
 def polar_image(renderer, model, values, theta: float, phi: float) -> np.ndarray:
@@ -69,7 +101,14 @@ def polar_image(renderer, model, values, theta: float, phi: float) -> np.ndarray
 def load_rgba(path: Path, size: int) -> np.ndarray:
     from PIL import Image
 
-    return np.asarray(Image.open(path).convert("RGBA").resize((size, size)))
+    return np.asarray(Image.open(path).convert("RGBA").resize((size, size), Image.NEAREST))
+
+
+def load_rgba_array(image: np.ndarray, size: int) -> np.ndarray:
+    """An 8-bit RGBA array scaled like the reference (nearest, so pixels stay comparable)."""
+    from PIL import Image
+
+    return np.asarray(Image.fromarray(image, "RGBA").resize((size, size), Image.NEAREST))
 
 
 def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
@@ -84,8 +123,8 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
     if not glfw.init():
         print("brdf-lab: cannot open a GLFW window (no display?)", file=sys.stderr)
         return 2
-    reference_path = find_reference(path.resolve())
-    panels = 4 if reference_path else 2
+    exercise = ExerciseView.find(path.resolve())
+    panels = 4 if exercise else 2
     glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
     glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
     glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
@@ -101,25 +140,35 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
     quad = ctx.program(vertex_shader=QUAD.strip(), fragment_shader=QUAD_FRAGMENT.strip())
     vao = ctx.vertex_array(quad, [])
     textures: list = []
-    reference = load_rgba(reference_path, PANEL) if reference_path else None
+    reference = load_rgba(exercise.reference_path, PANEL) if exercise else None
     mtime = -1.0
     shown = 0
     print(f"watching {path} (save the file to reload; close the window to stop)")
-    if reference_path:
-        print(f"reference image: {reference_path}")
+    if exercise:
+        print(
+            f"exercise {exercise.exercise.name}: showing check {exercise.check.name} beside "
+            f"its reference image {exercise.reference_path}"
+        )
     while not glfw.window_should_close(window):
         stamp = path.stat().st_mtime if path.exists() else mtime
         if stamp != mtime:
             mtime = stamp
             try:
-                model = load_any(path)
-                values = model.defaults()
-                sphere = renderer.sphere(model, values, light, size=PANEL)
-                images = [np.dstack([plots.to_srgb8(sphere[..., :3]),
-                                     (sphere[..., 3:] * 255).astype(np.uint8)]),
-                          polar_image(renderer, model, values, *light)]
+                if exercise:
+                    model = exercise.load(path)
+                    values = model.resolve(exercise.check.params)
+                    sphere = exercise.sphere(renderer, model)
+                    theirs = load_rgba_array(sphere, PANEL)
+                else:
+                    model = load_any(path)
+                    values = model.defaults()
+                    sphere = renderer.sphere(model, values, light, size=PANEL)
+                    theirs = np.dstack(
+                        [plots.to_srgb8(sphere[..., :3]), (sphere[..., 3:] * 255).astype(np.uint8)]
+                    )
+                images = [theirs, polar_image(renderer, model, values, *light)]
                 if reference is not None:
-                    diff = np.abs(images[0][..., :3].astype(int) - reference[..., :3].astype(int))
+                    diff = np.abs(theirs[..., :3].astype(int) - reference[..., :3].astype(int))
                     diff = np.clip(diff * 4, 0, 255).astype(np.uint8)
                     images += [reference, np.dstack([diff, np.full(diff.shape[:2], 255, np.uint8)])]
                 for texture in textures:
@@ -130,8 +179,11 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
                     textures.append(ctx.texture((rgba.shape[1], rgba.shape[0]), 4, rgba.tobytes()))
                 print(f"{time.strftime('%H:%M:%S')} compiled {path.name}: OK")
             except (ModelError, ShaderCompileError) as err:
-                print(f"{time.strftime('%H:%M:%S')} {path.name} does not compile; "
-                      f"showing the last good version:\n{err}", flush=True)
+                print(
+                    f"{time.strftime('%H:%M:%S')} {path.name} does not compile; "
+                    f"showing the last good version:\n{err}",
+                    flush=True,
+                )
         ctx.screen.use()
         ctx.clear(0.16, 0.16, 0.17)
         width = 2.0 / panels
