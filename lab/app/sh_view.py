@@ -15,17 +15,19 @@ from functools import lru_cache
 import numpy as np
 import pyqtgraph as pg
 from PyQt6.QtCore import Qt
-from PyQt6.QtWidgets import QLabel, QSizePolicy, QSpinBox
+from PyQt6.QtWidgets import QLabel, QSpinBox
 
 from lab.app.state import ModelState, Settings
-from lab.app.views import LUMA, View, state_key
+from lab.app.views import LUMA, View, finite_max, look_key, pen, state_key
+from lab.app.widgets import LiveText
+from lab.glsl import ShaderCompileError
 from lab.measured import sh
+from lab.models import ModelError
 from lab.render import direction, plane_of_incidence
 
 MAX_ORDER = 16
 SERIES_COLOR = (255, 210, 0)
 GRID = (48, 96)  # Gauss-Legendre nodes in cos(theta) x uniform phi: exact enough to order 16
-FAST_GRID = (24, 48)  # while a slider moves; the full grid refines a moment later
 
 
 @lru_cache(maxsize=2)
@@ -108,9 +110,7 @@ class SHView(View):
         self.tools.addWidget(QLabel("order L"))
         self.order_box = SettingSpin(lab.settings, "sh_order", 0, MAX_ORDER)
         self.tools.addWidget(self.order_box)
-        self.info = QLabel()
-        self.info.setMinimumWidth(40)  # long texts are cut, they never widen the window
-        self.info.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+        self.info = LiveText()  # long texts are cut, they never widen the window
         self.tools.addWidget(self.info, 1)
         self.graphics = pg.GraphicsLayoutWidget()
         self.graphics.ci.layout.setColumnStretchFactor(0, 3)
@@ -118,7 +118,12 @@ class SHView(View):
         self.layout_.addWidget(self.graphics, 1)
         self.lobe_plot = self.graphics.addPlot()
         self.lobe_plot.setLabel("bottom", "θo (deg)")
+        self.lobe_plot.setLabel("left", "÷ peak")
+        self.lobe_plot.getAxis("left").setTicks([[(0, "0"), (0.5, ".5"), (1, "1")]])
+        self.lobe_plot.getAxis("bottom").setTicks([[(t, str(t)) for t in (-90, -45, 0, 45, 90)]])
         self.lobe_plot.setMouseEnabled(False, False)
+        self.lobe_plot.hideButtons()
+        self.lobe_plot.setRange(xRange=(-90, 90), yRange=(-0.35, 1.15), padding=0)
         self.lobe_plot.addItem(pg.InfiniteLine(pos=0.0, angle=0, pen=pg.mkPen((120, 120, 120))))
         self.mirror = pg.InfiniteLine(angle=90, pen=pg.mkPen(
             (120, 200, 255), style=Qt.PenStyle.DashLine))
@@ -141,7 +146,7 @@ class SHView(View):
         self.data: SHData | None = None
         self.state: ModelState | None = None
         self.shown: tuple = ()
-        self.top = 0.0
+        self.scale = 1.0
         self.low = 1
         self.setMinimumWidth(250)  # two plots side by side
 
@@ -160,54 +165,76 @@ class SHView(View):
         """Relative error by order 0..MAX_ORDER of the shown lobe (empty without one)."""
         return self.data.errors if self.data is not None else np.zeros(0)
 
-    def redraw(self, fast: bool = False) -> bool:
+    def inputs(self) -> tuple:
+        s = self.lab.settings
+        state = self.subject()
+        return (look_key(state) if state else None, s["theta_i"], s["phi_i"], self.order)
+
+    def plane(self, state: ModelState, theta_i: float, phi_i: float) -> np.ndarray:
+        """The lobe in the plane of incidence alone: the cheap part, drawn while sliding."""
+        polar = self.renderer.polar(state.model, state.values, theta_i, phi_i,
+                                    cos_weighted=True)
+        return np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0,
+                             neginf=0.0)
+
+    def draw(self, fast: bool) -> bool:
         s = self.lab.settings
         state = self.subject()
         self.state = state
         self.cache = {k: v for k, v in self.cache.items() if state is not None and k == id(state)}
-        self.data = None
-        grid = FAST_GRID if fast else GRID
-        if state is not None and not state.model.delta:
-            key = state_key(state, s["theta_i"], s["phi_i"])
-            hit = self.cache.get(id(state))
-            if hit is not None and hit[0] == (*key, GRID):
-                grid = GRID  # the full result is at hand: no need for a coarse one
-            self.data = self.cached(state, (*key, grid), lambda: sh_data(
-                self.renderer, state, s["theta_i"], s["phi_i"], grid))
-        data = self.data
-        if data is None:
+        if state is None or state.model.delta:
+            self.data = None
             self.shown = ()
             for curve in (self.lobe_curve, self.series_curve, self.error_curve):
                 curve.setData([], [])
-            delta = state is not None and state.model.delta
-            self.info.setText("an ideal mirror has no finite lobe to expand" if delta
-                              else "no model to show")
+            self.info.setText("an ideal mirror has no finite lobe to expand"
+                     if state is not None else "no model to show")
+            return False
+        key = state_key(state, s["theta_i"], s["phi_i"])
+        hit = self.cache.get(id(state))
+        if fast and not (hit is not None and hit[0] == (*key, GRID)):
+            # The projection is the heavy part: it waits for the slider to stop. The lobe
+            # itself follows the slider; the series and the errors are cleared, not stale.
+            try:
+                plane = self.plane(state, s["theta_i"], s["phi_i"])
+            except (ShaderCompileError, ModelError):
+                return False
+            theta_o = np.arange(-90.0, 90.5, 1.0)
+            self.show_lobe(state, theta_o, plane, max(finite_max(plane[np.abs(theta_o) <= 87]),
+                                                      1e-9))
+            self.series_curve.setData([], [])
+            self.shown = ()
+            self.info.setText("series and error follow when the slider stops")
+            return True
+        self.data = self.cached(state, (*key, GRID), lambda: sh_data(
+            self.renderer, state, s["theta_i"], s["phi_i"], GRID))
+        data = self.data
+        if data is None:
             return False
         order = self.order
-        shown = (id(data), order, state.color, s["theta_i"])
+        shown = (id(data), order, state.color)
         if shown == self.shown:
-            return grid != GRID  # nothing new: a frame for another model's change
+            return False
         self.shown = shown
-        pen = pg.mkPen(state.color, width=2)
-        self.lobe_curve.setData(data.theta_o, data.plane, pen=pen)
-        self.series_curve.setData(data.theta_o, data.reconstruction(order), pen=pg.mkPen(
-            SERIES_COLOR, width=1.5, style=Qt.PenStyle.DashLine))
-        self.mirror.setValue(s["theta_i"])
-        # Ranges change only when the data leave them: new ticks cost more than the curves.
-        top = max(data.peak, 1e-9)
-        if not 0.7 * self.top <= top <= self.top:
-            self.top = 1.15 * top
-            self.lobe_plot.setRange(xRange=(-90, 90), yRange=(-0.3 * self.top, self.top),
-                                    padding=0)
+        self.show_lobe(state, data.theta_o, data.plane, max(data.peak, 1e-9))
+        self.series_curve.setData(data.theta_o, data.reconstruction(order) * self.scale, pen=pen(
+            SERIES_COLOR, 1.5, Qt.PenStyle.DashLine))
         errors = np.maximum(data.errors, 1e-6)  # log axis
         low = math.floor(math.log10(errors.min()))
         if low != self.low:
             self.low = low
             self.error_plot.setRange(xRange=(-0.5, MAX_ORDER + 0.5), yRange=(low, 0.2),
                                      padding=0)
-        self.error_curve.setData(np.arange(MAX_ORDER + 1), errors, pen=pen)
+        self.error_curve.setData(np.arange(MAX_ORDER + 1), errors, pen=pen(state.color))
         self.order_mark.setValue(order)
-        self.info.setText(f"{sh.coefficient_count(order)} coefficients, "
-                          f"error {100 * data.errors[order]:.2g} %"
-                          + (" (coarse)" if grid != GRID else ""))
-        return grid != GRID
+        self.info.setText(f"L = {order}: {sh.coefficient_count(order)} coefficients, "
+                 f"error {100 * data.errors[order]:.2g} %")
+        return False
+
+    def show_lobe(self, state: ModelState, theta_o: np.ndarray, plane: np.ndarray,
+                  top: float) -> None:
+        """The lobe (and later its series) relative to the lobe's peak: a fixed y range,
+        so no new ticks or layout while a slider moves, and the shape is what matters."""
+        self.scale = 1.0 / top
+        self.lobe_curve.setData(theta_o, plane * self.scale, pen=pen(state.color))
+        self.mirror.setValue(self.lab.settings["theta_i"])

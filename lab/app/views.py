@@ -8,35 +8,50 @@ from __future__ import annotations
 
 import csv
 import math
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 import pyqtgraph as pg
-from PyQt6.QtCore import QPointF, QRectF, Qt
-from PyQt6.QtGui import QColor, QFont, QImage, QPainter, QPen
-from PyQt6.QtWidgets import QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+from PyQt6.QtCore import QPointF, QRect, Qt
+from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
+from PyQt6.QtWidgets import (
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QVBoxLayout,
+    QWidget,
+)
 
 from lab.app.renderer import MODES, SHAPES, AppRenderer
 from lab.app.state import LabState, ModelState
-from lab.app.widgets import SettingCheck, SettingCombo, SettingSlider
+from lab.app.widgets import LiveText, SettingCheck, SettingCombo, SettingSlider
 from lab.glsl import ShaderCompileError
 from lab.models import ModelError
 from lab.render import Light
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 BACKGROUND = (40, 40, 44)
+_BACKGROUND = np.array(BACKGROUND, np.float32) / 255.0
 
 
 def tonemap(image: np.ndarray, exposure: float, gamma: float) -> QImage:
-    """Float RGB(A) -> QImage: 2^exposure, clamp, 1/gamma, background where alpha is 0."""
-    rgb = np.clip(np.nan_to_num(image[..., :3], nan=0.0) * (2.0 ** exposure), 0.0, 1.0)
-    rgb = rgb ** (1.0 / max(gamma, 0.1))
+    """Float RGB(A) -> QImage: 2^exposure, clamp, 1/gamma, background where alpha is 0.
+
+    Float32 throughout, and the QImage is 32-bit RGB: the raster engine draws that format
+    without converting it on every paint.
+    """
+    rgb = np.nan_to_num(image[..., :3] * np.float32(2.0 ** exposure), nan=0.0, copy=False)
+    np.clip(rgb, 0.0, 1.0, out=rgb)
+    np.power(rgb, np.float32(1.0 / max(gamma, 0.1)), out=rgb)
     if image.shape[-1] == 4:
         alpha = image[..., 3:4]
-        rgb = rgb * alpha + (np.array(BACKGROUND) / 255.0) * (1.0 - alpha)
-    data = np.ascontiguousarray((rgb * 255.0 + 0.5).astype(np.uint8))
-    height, width = data.shape[:2]
-    return QImage(data.data, width, height, 3 * width, QImage.Format.Format_RGB888).copy()
+        rgb = rgb * alpha + _BACKGROUND * (1.0 - alpha)
+    height, width = rgb.shape[:2]
+    data = np.empty((height, width, 4), np.uint8)
+    data[..., 2::-1] = rgb * np.float32(255.0) + np.float32(0.5)  # BGRA in memory
+    data[..., 3] = 255
+    return QImage(data.data, width, height, 4 * width, QImage.Format.Format_RGB32).copy()
 
 
 def finite_max(values: np.ndarray) -> float:
@@ -48,8 +63,32 @@ def state_key(state: ModelState, *extra) -> tuple:
     return (state.model.code, str(state.model.path), tuple(sorted(state.values.items())), *extra)
 
 
+def look_key(state: ModelState) -> tuple:
+    """What a view shows of a model besides its values: identity, label and colour."""
+    return (id(state), state_key(state), state.label, state.color)
+
+
+@lru_cache(maxsize=64)
+def pen(color, width: float = 2.0, style: Qt.PenStyle = Qt.PenStyle.SolidLine) -> QPen:
+    """Pens made once per colour (pyqtgraph copies them)."""
+    made = pg.mkPen(color, width=width, style=style)
+    made.setCosmetic(True)
+    return made
+
+
+def opaque(widget: QWidget) -> QWidget:
+    """A widget that paints every pixel: Qt need not paint its parents below it first."""
+    widget.setAttribute(Qt.WidgetAttribute.WA_OpaquePaintEvent, True)
+    return widget
+
+
 class View(QWidget):
-    """Base: a tool row above the content, a per-model cache and PNG export."""
+    """Base: a tool row above the content, a per-model cache and PNG export.
+
+    `redraw(fast)` does nothing when the view's `inputs()` are those it last drew (a light
+    change leaves the slice alone, a model's change leaves views of other models alone).
+    Subclasses implement `inputs()` and `draw(fast) -> needs a finer pass`.
+    """
 
     title = "view"
     name = "view"
@@ -63,9 +102,41 @@ class View(QWidget):
         self.tools = QHBoxLayout()
         self.layout_.addLayout(self.tools)
         self.errors: list[str] = []
+        self.drawn: tuple | None = None  # the inputs of the last draw
+        self.coarse = False  # the last draw asked for a finer pass
+        self.draws = 0  # how many times the view really drew (tests count them)
+        self.budget = 0  # full-quality computations left in this refinement step
 
     def is_shown(self) -> bool:
         return self.isVisible() and not self.visibleRegion().isEmpty()
+
+    def inputs(self) -> tuple:
+        """Everything the view's picture depends on."""
+        raise NotImplementedError
+
+    def draw(self, fast: bool) -> bool:
+        raise NotImplementedError
+
+    def redraw(self, fast: bool = False) -> bool:
+        """Draw if the inputs changed (or a finer pass is due); True: refine me later."""
+        inputs = self.inputs()
+        if inputs == self.drawn and (fast or not self.coarse):
+            return self.coarse
+        # One full-quality computation per refinement step: a step never holds input back.
+        self.budget = 0 if fast else 1
+        self.coarse = bool(self.draw(fast))
+        self.drawn = inputs
+        self.draws += 1
+        return self.coarse
+
+    def invalidate(self) -> None:
+        self.drawn = None
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        request = getattr(self.window(), "request", None)
+        if request is not None:
+            request()  # views drawn at their size on screen check their inputs again
 
     def cached(self, state: ModelState, key: tuple, compute):
         """compute() unless the model's inputs are the same as last time."""
@@ -80,25 +151,41 @@ class View(QWidget):
         self.cache[id(state)] = (key, value)
         return value
 
-    def redraw(self, fast: bool = False) -> bool:
-        raise NotImplementedError
+    def best(self, state: ModelState, fast: bool, fast_key: tuple, full_key: tuple,
+             compute) -> tuple[object, bool]:
+        """(result, coarse): the full-quality result when at hand or within this step's
+        budget, else the interactive one. `compute(full)` makes either."""
+        hit = self.cache.get(id(state))
+        if hit is not None and hit[0] == full_key:
+            return hit[1], False
+        if not fast and self.budget > 0 or fast_key == full_key:
+            self.budget -= not fast
+            return self.cached(state, full_key, lambda: compute(True)), False
+        return self.cached(state, fast_key, lambda: compute(False)), True
 
     def export_png(self, path: str | Path) -> None:
         self.grab().save(str(path))
 
 
 class ImageRow(QWidget):
-    """Images side by side, each with a coloured caption; emits drags as unit-disc points."""
+    """Images side by side, each with a coloured caption; emits drags as unit-disc points.
+
+    An image as large as its cell is drawn at its own size (no scaling); a coarse one
+    (while a slider moves) is scaled up without smoothing.
+    """
+
+    CAPTION = 20
 
     def __init__(self, on_drag=None):
         super().__init__()
         self.images: list[tuple[QImage, str, str]] = []
         self.on_drag = on_drag
         self.setMinimumSize(160, 120)
+        opaque(self)
 
     def cell(self) -> tuple[int, int]:
         n = max(len(self.images), 1)
-        side = max(min(self.width() // n, self.height() - 20), 16)
+        side = max(min(self.width() // n, self.height() - self.CAPTION), 16)
         return n, side
 
     def paintEvent(self, event) -> None:
@@ -107,10 +194,13 @@ class ImageRow(QWidget):
         n, side = self.cell()
         x0 = (self.width() - n * side) // 2
         for index, (image, caption, color) in enumerate(self.images):
-            target = QRectF(x0 + index * side, 0, side, side)
-            painter.drawImage(target, image)
+            left = x0 + index * side
+            if image.width() == side and image.height() == side:
+                painter.drawImage(left, 0, image)
+            else:
+                painter.drawImage(QRect(left, 0, side, side), image)
             painter.setPen(QColor(color))
-            painter.drawText(QRectF(target.left(), side, side, 20),
+            painter.drawText(QRect(left, side, side, self.CAPTION),
                              Qt.AlignmentFlag.AlignCenter, caption)
         painter.end()
 
@@ -136,6 +226,7 @@ class SphereView(View):
 
     title = "Lit spheres"
     name = "sphere"
+    FAST_SIZE = 192
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
@@ -157,33 +248,44 @@ class SphereView(View):
         self.lab.settings.set("theta_i", round(theta * 2) / 2)
         self.lab.settings.set("phi_i", round(phi * 2) / 2)
 
-    def size_for(self, fast: bool) -> int:
+    def side(self) -> int:
+        """The spheres' size on screen: they are rendered at exactly that size."""
         n = max(len(self.lab.visible_models()), 1)
-        side = max(min(self.canvas.width() // n, self.canvas.height() - 20), 32)
-        side = min(side, 512)
-        return min(side, 192) if fast else side
+        side = max(min(self.canvas.width() // n, self.canvas.height() - ImageRow.CAPTION), 32)
+        return min(side, 512)
 
-    def redraw(self, fast: bool = False) -> bool:
+    def inputs(self) -> tuple:
         s = self.lab.settings
-        size = self.size_for(fast)
+        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
+                s["phi_i"], s["multiply_cos"], s["exposure"], s["gamma"], self.side())
+
+    def draw(self, fast: bool) -> bool:
+        s = self.lab.settings
+        full = self.side()
+        small = min(full, self.FAST_SIZE)
         light = (s["theta_i"], s["phi_i"])
         self.floats, images = [], []
+        coarse = False
+        tone = (s["exposure"], s["gamma"])
         for state in self.lab.visible_models():
-            key = state_key(state, light, size, s["multiply_cos"])
-            image = self.cached(state, key, lambda st=state: self.renderer.sphere(
-                st.model, st.values, light, size=size, multiply_cos=s["multiply_cos"]))
+            image, rough = self.best(
+                state, fast, (light, small, s["multiply_cos"], state_key(state)),
+                (light, full, s["multiply_cos"], state_key(state)),
+                lambda use_full, st=state: self.renderer.sphere(
+                    st.model, st.values, light, size=full if use_full else small,
+                    multiply_cos=s["multiply_cos"]))
+            coarse = coarse or rough
             if image is None:
                 continue
             self.floats.append((state, image))
             known = self.toned.get(id(state))
-            tone = (s["exposure"], s["gamma"])
             if known is None or known[0] is not image or known[1] != tone:
                 known = (image, tone, tonemap(image, *tone))
                 self.toned[id(state)] = known
             images.append((known[2], state.label, state.color))
         self.canvas.images = images
         self.canvas.update()
-        return size < self.size_for(False)
+        return coarse
 
 
 class PolarView(View):
@@ -204,6 +306,7 @@ class PolarView(View):
         self.tools.addWidget(export)
         self.tools.addStretch(1)
         self.plot = pg.PlotWidget()
+        opaque(self.plot.viewport())
         self.plot.setAspectLocked(True)
         self.plot.hideAxis("left")
         self.plot.hideAxis("bottom")
@@ -224,6 +327,7 @@ class PolarView(View):
             self.plot.addItem(text)
             self.marks.append((line, text))
         self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
+        self.marked: float | None = None
         self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.1, 1.2), padding=0)
 
     def radius(self, values: np.ndarray, peak: float) -> np.ndarray:
@@ -232,7 +336,12 @@ class PolarView(View):
             return np.maximum(np.log10(np.maximum(values, floor) / floor), 0.0) / self.DECADES
         return values / peak
 
-    def redraw(self, fast: bool = False) -> bool:
+    def inputs(self) -> tuple:
+        s = self.lab.settings
+        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
+                s["phi_i"], s["polar_cos"], s["polar_log"])
+
+    def draw(self, fast: bool) -> bool:
         s = self.lab.settings
         theta_i, phi_i, cos = s["theta_i"], s["phi_i"], s["polar_cos"]
         self.data = []
@@ -248,25 +357,28 @@ class PolarView(View):
         peaks += [float(np.asarray(p.spike) @ LUMA) for _, p, _ in lum if p.spike is not None]
         peak = max([x for x in peaks if np.isfinite(x)] + [1e-12])
         ti = math.radians(theta_i)
-        for (line, text), a in zip(self.marks, (0.0, -ti, ti), strict=True):
-            line.setData([0, 1.05 * math.sin(a)], [0, 1.05 * math.cos(a)])
-            text.setPos(1.1 * math.sin(a), 1.1 * math.cos(a))
+        if self.marked != theta_i:  # the marks move with the light only
+            self.marked = theta_i
+            for (line, text), a in zip(self.marks, (0.0, -ti, ti), strict=True):
+                line.setData([0, 1.05 * math.sin(a)], [0, 1.05 * math.cos(a)])
+                text.setPos(1.1 * math.sin(a), 1.1 * math.cos(a))
         while len(self.curves) < len(lum):
             self.curves.append((self.plot.plot(), self.plot.plot()))
         for index, (curve, spike) in enumerate(self.curves):
             if index >= len(lum):
-                curve.setData([], [])
-                spike.setData([], [])
+                if curve.xData is not None and len(curve.xData):
+                    curve.setData([], [])
+                    spike.setData([], [])
                 continue
             state, polar, values = lum[index]
             r = np.minimum(np.nan_to_num(self.radius(values, peak), posinf=1.3), 1.3)
             a = np.radians(polar.theta_o)
-            curve.setData(r * np.sin(a), r * np.cos(a), pen=pg.mkPen(state.color, width=2))
+            curve.setData(r * np.sin(a), r * np.cos(a), pen=pen(state.color))
             if polar.spike is not None:
                 h = float(self.radius(np.array([float(np.asarray(polar.spike) @ LUMA)]), peak)[0])
                 spike.setData([0, h * math.sin(ti)], [0, h * math.cos(ti)],
-                              pen=pg.mkPen(state.color, width=4))
-            else:
+                              pen=pen(state.color, 4))
+            elif spike.xData is not None and len(spike.xData):
                 spike.setData([], [])
         return False
 
@@ -306,14 +418,19 @@ class PolarView(View):
 class LobeCanvas(QWidget):
     """Wireframe lobes projected by hand; drag rotates, the wheel zooms."""
 
+    RING = np.stack([np.cos(np.radians(np.linspace(0, 360, 73))),
+                     np.sin(np.radians(np.linspace(0, 360, 73))), np.zeros(73)], axis=-1)
+
     def __init__(self, view: LobeView):
         super().__init__()
         self.view = view
-        self.lines: list[tuple[list, str]] = []
-        self.paths: list[tuple[object, str]] = []
+        # Per model: every polyline's points in one (n, 3) array, where each line ends
+        # (pyqtgraph's `connect`), and the colour. One projection per model, not per line.
+        self.lines: list[tuple[np.ndarray, np.ndarray, str]] = []
         self.marks: list[tuple[np.ndarray, tuple]] = []
         self.last = None
         self.setMinimumSize(160, 160)
+        opaque(self)
 
     def project(self, points: np.ndarray) -> np.ndarray:
         s = self.view.lab.settings
@@ -326,30 +443,25 @@ class LobeCanvas(QWidget):
         cx, cy = self.width() / 2, self.height() * 0.62
         return np.stack([cx + scale * xr, cy - scale * up], axis=-1)
 
+    def path(self, points: np.ndarray, connect="all"):
+        xy = self.project(points)
+        return pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect)
+
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor(*BACKGROUND))
         painter.setRenderHint(QPainter.RenderHint.Antialiasing, not self.view.fast)
-        # One path per model from numpy arrays: building QPointF lists would cost milliseconds.
-        self.paths = []
-        for polylines, color in self.lines:
-            screen = [self.project(line) for line in polylines]
-            xy = np.concatenate(screen)
-            connect = np.concatenate([np.r_[np.ones(len(p) - 1, bool), False] for p in screen])
-            self.paths.append((pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect), color))
-        ring = np.radians(np.linspace(0, 360, 73))
-        disc = np.stack([np.cos(ring), np.sin(ring), 0 * ring], axis=-1)
         painter.setPen(QPen(QColor(110, 110, 110), 1))
-        painter.drawPolyline([QPointF(*p) for p in self.project(disc)])
+        painter.drawPath(self.path(self.RING))
         for direction, color in self.marks:
             ends = self.project(np.array([[0.0, 0.0, 0.0], direction * 1.1]))
             painter.setPen(QPen(QColor(*color), 1.5, Qt.PenStyle.DashLine))
             painter.drawLine(QPointF(*ends[0]), QPointF(*ends[1]))
-        for path, color in self.paths:
+        for points, connect, color in self.lines:
             qcolor = QColor(color)
             qcolor.setAlpha(170)
             painter.setPen(QPen(qcolor, 1))
-            painter.drawPath(path)
+            painter.drawPath(self.path(points, connect))
         painter.end()
 
     def mousePressEvent(self, event) -> None:
@@ -375,29 +487,41 @@ class LobeView(View):
 
     title = "3D lobe"
     name = "lobe3d"
+    FAST_GRID = (16, 37)
+    GRID = (31, 73)
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
-        self.tools.addWidget(QLabel("drag to rotate, wheel to zoom; scale as the polar plot"))
+        self.tools.addWidget(LiveText("drag to rotate, wheel to zoom; scale as the polar plot"))
         self.fast = False
         self.canvas = LobeCanvas(self)
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, tuple]] = []
 
-    def redraw(self, fast: bool = False) -> bool:
+    def inputs(self) -> tuple:
+        s = self.lab.settings
+        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
+                s["phi_i"], s["polar_cos"], s["polar_log"], s["lobe_yaw"], s["lobe_pitch"],
+                s["lobe_zoom"])
+
+    def draw(self, fast: bool) -> bool:
         from lab.render import direction
 
         s = self.lab.settings
         theta_i, phi_i = s["theta_i"], s["phi_i"]
-        grid = (16, 37) if fast else (31, 73)
-        self.fast = fast
         self.data = []
+        coarse = False
         for state in self.lab.visible_models():
-            key = state_key(state, theta_i, phi_i, grid)
-            lobe = self.cached(state, key, lambda st=state: self.renderer.lobe3d(
-                st.model, st.values, theta_i, phi_i, n_theta=grid[0], n_phi=grid[1]))
+            key = state_key(state, theta_i, phi_i)
+            lobe, rough = self.best(
+                state, fast, (*key, self.FAST_GRID), (*key, self.GRID),
+                lambda full, st=state: self.renderer.lobe3d(
+                    st.model, st.values, theta_i, phi_i,
+                    *(self.GRID if full else self.FAST_GRID)))
+            coarse = coarse or rough
             if lobe is not None:
                 self.data.append((state, lobe))
+        self.fast = coarse
         values = []
         for _, (theta, _phi, f) in self.data:
             lum = f.astype(np.float64) @ LUMA
@@ -414,11 +538,15 @@ class LobeView(View):
             else:
                 r = lum / peak
             tt, pp = np.meshgrid(theta, phi, indexing="ij")
-            dirs = direction(tt, pp)
-            points = dirs * np.nan_to_num(np.minimum(r, 1.5))[..., None]
-            lines = [points[i] for i in range(0, len(theta), 2)]
-            lines += [points[:, j] for j in range(0, len(phi), 3)]
-            self.canvas.lines.append((lines, state.color))
+            points = direction(tt, pp) * np.nan_to_num(np.minimum(r, 1.5))[..., None]
+            rings = points[::2]  # (rings, n_phi, 3): constant theta
+            meridians = points[:, ::3].transpose(1, 0, 2)  # constant phi
+            lines = [rings.reshape(-1, 3), meridians.reshape(-1, 3)]
+            ends = [np.ones(rings.shape[:2], bool), np.ones(meridians.shape[:2], bool)]
+            for end in ends:
+                end[:, -1] = False  # no segment from one line's end to the next's start
+            self.canvas.lines.append((np.concatenate(lines),
+                                      np.concatenate([e.ravel() for e in ends]), state.color))
         light = direction(theta_i, phi_i)
         self.canvas.marks = [
             (np.array([0.0, 0.0, 1.0]), (200, 200, 200)),
@@ -426,7 +554,74 @@ class LobeView(View):
             (np.array([-light[0], -light[1], light[2]]), (120, 200, 255)),
         ]
         self.canvas.update()
-        return fast
+        return coarse
+
+
+class SliceCanvas(QWidget):
+    """One square image per model over theta_h (x) and theta_d (y), both axes 0..90 deg.
+
+    Drawn by hand so the axes can never drift or stretch: every plot is a square at the
+    same scale, whatever the widget's shape.
+    """
+
+    TICKS = (0, 30, 60, 90)
+
+    def __init__(self):
+        super().__init__()
+        self.images: list[tuple[QImage, str, str]] = []
+        self.setMinimumSize(160, 120)
+        opaque(self)
+
+    def margins(self) -> tuple[int, int, int, int]:
+        """Left, top, right and bottom room around each plot for titles, ticks, labels."""
+        fm = QFontMetrics(self.font())
+        line = fm.height()
+        return (fm.horizontalAdvance("90") + line + 12, line + 4, 10, 2 * line + 8)
+
+    def plot_rects(self, count: int | None = None) -> list[QRect]:
+        """Where each image goes: squares of one size, side by side, centred."""
+        n = max(count if count is not None else len(self.images), 1)
+        left, top, right, bottom = self.margins()
+        cell = self.width() // n
+        side = max(min(cell - left - right, self.height() - top - bottom), 16)
+        x0 = (self.width() - n * (left + side + right)) // 2
+        return [QRect(x0 + i * (left + side + right) + left, top, side, side) for i in range(n)]
+
+    def paintEvent(self, event) -> None:
+        painter = QPainter(self)
+        painter.fillRect(self.rect(), QColor(*BACKGROUND))
+        fm = QFontMetrics(self.font())
+        line = fm.height()
+        axis = QColor(170, 170, 170)
+        for rect, (image, caption, color) in zip(self.plot_rects(), self.images, strict=False):
+            if image.width() == rect.width() and image.height() == rect.height():
+                painter.drawImage(rect.topLeft(), image)
+            else:
+                painter.drawImage(rect, image)
+            painter.setPen(QColor(color))
+            painter.drawText(QRect(rect.left(), 0, rect.width(), line + 2),
+                             Qt.AlignmentFlag.AlignCenter, caption)
+            painter.setPen(QPen(axis, 1))
+            painter.drawRect(rect.adjusted(0, 0, -1, -1))
+            for tick in self.TICKS:
+                x = rect.left() + round(tick / 90 * (rect.width() - 1))
+                y = rect.bottom() - round(tick / 90 * (rect.height() - 1))
+                painter.drawLine(x, rect.bottom(), x, rect.bottom() + 4)
+                painter.drawLine(rect.left() - 4, y, rect.left(), y)
+                painter.drawText(QRect(x - 20, rect.bottom() + 5, 40, line),
+                                 Qt.AlignmentFlag.AlignHCenter, str(tick))
+                painter.drawText(QRect(rect.left() - 46, y - line // 2, 40, line),
+                                 Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
+                                 str(tick))
+            painter.drawText(QRect(rect.left(), rect.bottom() + 5 + line, rect.width(), line),
+                             Qt.AlignmentFlag.AlignHCenter, "θh (deg)")
+            painter.save()
+            painter.translate(rect.left() - fm.horizontalAdvance("90") - 10, rect.center().y())
+            painter.rotate(-90)
+            painter.drawText(QRect(-rect.height() // 2, -line, rect.height(), line),
+                             Qt.AlignmentFlag.AlignCenter, "θd (deg)")
+            painter.restore()
+        painter.end()
 
 
 class SliceView(View):
@@ -434,53 +629,58 @@ class SliceView(View):
 
     title = "Image slice (θh, θd)"
     name = "slice"
+    FAST_SIZE = 96
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
         s = lab.settings
         self.tools.addWidget(SettingSlider(s, "phi_d", "φd", 0.0, 180.0, 1.0), 1)
         self.tools.addWidget(QLabel("tone as the spheres"))
-        self.graphics = pg.GraphicsLayoutWidget()
-        self.layout_.addWidget(self.graphics, 1)
-        self.plots: list[tuple[pg.PlotItem, pg.ImageItem]] = []
+        self.canvas = SliceCanvas()
+        self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, np.ndarray]] = []
+        self.toned: dict[int, tuple] = {}
 
-    def _ensure_plots(self, count: int) -> None:
-        if len(self.plots) == count:
-            return
-        self.graphics.clear()
-        self.plots = []
-        for _ in range(count):
-            plot = self.graphics.addPlot()
-            plot.setLabel("bottom", "θh (deg)")
-            plot.setLabel("left", "θd (deg)")
-            plot.setAspectLocked(True)
-            plot.setMouseEnabled(False, False)
-            image = pg.ImageItem(axisOrder="row-major")
-            image.setRect(QRectF(0, 0, 90, 90))
-            plot.addItem(image)
-            plot.setRange(xRange=(0, 90), yRange=(0, 90), padding=0)
-            self.plots.append((plot, image))
+    def axes(self) -> list[tuple[tuple[float, float], tuple[float, float], QRect]]:
+        """Each plot's (theta_h range, theta_d range, rectangle on screen)."""
+        return [((0.0, 90.0), (0.0, 90.0), rect)
+                for rect in self.canvas.plot_rects(len(self.canvas.images))][
+                    : len(self.canvas.images)]
 
-    def redraw(self, fast: bool = False) -> bool:
+    def side(self) -> int:
+        rects = self.canvas.plot_rects(len(self.lab.visible_models()))
+        return min(max(rects[0].width(), 32), 256)
+
+    def inputs(self) -> tuple:
         s = self.lab.settings
-        size = 96 if fast else 160
-        self.data = []
+        return (tuple(look_key(m) for m in self.lab.visible_models()), s["phi_d"],
+                s["exposure"], s["gamma"], self.side())
+
+    def draw(self, fast: bool) -> bool:
+        s = self.lab.settings
+        full = self.side()
+        small = min(full, self.FAST_SIZE)
+        self.data, images = [], []
+        coarse = False
+        tone = (s["exposure"], s["gamma"])
         for state in self.lab.visible_models():
-            key = state_key(state, s["phi_d"], size)
-            image = self.cached(state, key, lambda st=state: self.renderer.slice(
-                st.model, st.values, s["phi_d"], size))
-            if image is not None:
-                self.data.append((state, image))
-        self._ensure_plots(len(self.data))
-        scale = 2.0 ** s["exposure"]
-        for (plot, item), (state, image) in zip(self.plots, self.data, strict=True):
-            rgb = np.clip(np.nan_to_num(image[::-1]) * scale, 0.0, 1.0) ** (1.0 / s["gamma"])
-            item.setImage((rgb * 255).astype(np.uint8), levels=(0, 255))
-            item.setRect(QRectF(0, 0, 90, 90))
-            if plot.titleLabel.text != state.label:
-                plot.setTitle(state.label, color=state.color)
-        return fast
+            key = state_key(state, s["phi_d"])
+            image, rough = self.best(
+                state, fast, (*key, small), (*key, full),
+                lambda use_full, st=state: self.renderer.slice(
+                    st.model, st.values, s["phi_d"], full if use_full else small))
+            coarse = coarse or rough
+            if image is None:
+                continue
+            self.data.append((state, image))
+            known = self.toned.get(id(state))
+            if known is None or known[0] is not image or known[1] != tone:
+                known = (image, tone, tonemap(image, *tone))
+                self.toned[id(state)] = known
+            images.append((known[2], state.label, state.color))
+        self.canvas.images = images
+        self.canvas.update()
+        return coarse
 
 
 class AlbedoView(View):
@@ -488,38 +688,60 @@ class AlbedoView(View):
 
     title = "Directional albedo"
     name = "albedo"
+    NOTE = "albedo = ∫ f_r cos θo dω (largest colour channel)"
+    FAST = (np.linspace(0, 85, 9), 32, 16)
+    FULL = (np.arange(0, 90, 2.5), 192, 48)
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
-        self.note = QLabel("albedo = ∫ f_r cos θo dω (largest colour channel)")
-        self.tools.addWidget(self.note)
+        self.note = LiveText(self.NOTE)
+        self.tools.addWidget(self.note, 1)
         self.plot = pg.PlotWidget()
+        opaque(self.plot.viewport())
         self.plot.setLabel("bottom", "θi (deg)")
         self.plot.setLabel("left", "directional albedo")
+        self.plot.getAxis("left").setWidth(52)  # fixed: new tick labels never relayout
         self.plot.setMouseEnabled(False, False)
+        self.plot.hideButtons()
         self.layout_.addWidget(self.plot, 1)
         self.data: list[tuple[ModelState, np.ndarray, np.ndarray]] = []
         self.plot.addItem(pg.InfiniteLine(pos=1.0, angle=0, pen=pg.mkPen(
             (220, 220, 220), style=Qt.PenStyle.DashLine), label="albedo = 1"))
         self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
         self.top = 0.0
+        self.set_top(1.0)
 
-    def redraw(self, fast: bool = False) -> bool:
+    def set_top(self, top: float, grow_only: bool = False) -> None:
+        """The y range: the smallest of 1.1, 1.5, 2, 3, 5, 10, ... above the data. While a
+        slider moves it only grows (new ticks cost more than the curves); it may shrink
+        again when the slider stops."""
+        wanted = next(t for t in (1.1, 1.5, 2.0, 3.0, 5.0, 10.0, 20.0, 50.0, math.inf)
+                      if t >= top * 1.05)
+        if not math.isfinite(wanted):
+            wanted = 10.0 ** math.ceil(math.log10(top * 1.05))
+        if wanted > self.top or wanted < self.top and not grow_only:
+            self.top = wanted
+            self.plot.setRange(xRange=(0, 90), yRange=(0, wanted), padding=0.02)
+
+    def inputs(self) -> tuple:
+        # Albedo is integrated over every outgoing direction: it does not depend on theta_i.
+        return (tuple(look_key(m) for m in self.lab.visible_models()),
+                self.lab.settings["phi_i"])
+
+    def draw(self, fast: bool) -> bool:
         phi_i = self.lab.settings["phi_i"]
-        quality = (np.linspace(0, 85, 9), 32, 16) if fast else (np.arange(0, 90, 2.5), 192, 48)
-        thetas, samples, wedges = quality
         self.data = []
-        refine = False
+        coarse = False
         for state in self.lab.visible_models():
-            full_key = state_key(state, phi_i, "full")
-            hit = self.cache.get(id(state))
-            if hit is not None and hit[0] == full_key:
-                result = hit[1]
-            else:
-                key = state_key(state, phi_i, "fast" if fast else "full")
-                result = self.cached(state, key, lambda st=state: (thetas, self.renderer.albedo(
-                    st.model, st.values, thetas, phi_i, samples=samples, wedges=wedges)))
-                refine = refine or fast
+            key = state_key(state, phi_i)
+
+            def compute(full: bool, st=state):
+                thetas, samples, wedges = self.FULL if full else self.FAST
+                return thetas, self.renderer.albedo(st.model, st.values, thetas, phi_i,
+                                                    samples=samples, wedges=wedges)
+
+            result, rough = self.best(state, fast, (*key, "fast"), (*key, "full"), compute)
+            coarse = coarse or rough
             if result is not None:
                 self.data.append((state, result[0], result[1].max(axis=1)))
         while len(self.curves) < len(self.data):
@@ -533,21 +755,17 @@ class AlbedoView(View):
                 marks.setData([], [])
                 continue
             state, thetas_, albedo = self.data[index]
-            curve.setData(thetas_, albedo, pen=pg.mkPen(state.color, width=2))
+            curve.setData(thetas_, albedo, pen=pen(state.color))
             over = albedo > 1.0 + 1e-3
             marks.setData(thetas_[over], albedo[over])
             if over.any():
                 gain.append(state.label)
-        top = max([finite_max(a) for _, _, a in self.data] + [1.0])
-        if top != self.top:
-            self.top = top
-            self.plot.setRange(xRange=(0, 90), yRange=(0, top * 1.1), padding=0.02)
+        self.set_top(max([finite_max(a) for _, _, a in self.data] + [1.0]), grow_only=fast)
         if gain:
-            self.note.setText("<span style='color:#ff5050'>energy gain (albedo > 1): "
-                              + ", ".join(gain) + "</span>")
+            self.note.setText("energy gain (albedo > 1): " + ", ".join(gain), "#ff5050")
         else:
-            self.note.setText("albedo = ∫ f_r cos θo dω (largest colour channel)")
-        return refine
+            self.note.setText(self.NOTE)
+        return coarse
 
 
 class ObjectView(View):
@@ -555,6 +773,7 @@ class ObjectView(View):
 
     title = "Lit object / spatially varying"
     name = "object"
+    FAST_SIZE = 112
     FILL_LIGHTS = [Light(60.0, 200.0, (0.35, 0.4, 0.55)), Light(75.0, 100.0, (0.5, 0.4, 0.3)),
                    Light(50.0, 300.0, (0.3, 0.3, 0.3))]
 
@@ -586,30 +805,40 @@ class ObjectView(View):
             return self.lab.selected
         return visible[0] if visible else None
 
-    def redraw(self, fast: bool = False) -> bool:
+    def side(self) -> int:
+        return max(min(self.canvas.width(), self.canvas.height() - ImageRow.CAPTION, 512), 32)
+
+    def inputs(self) -> tuple:
+        s = self.lab.settings
+        state = self.subject()
+        return (look_key(state) if state else None, self.side(),
+                *(s[k] for k in ("theta_i", "phi_i", "lights", "ambient", "shape", "mode", "yaw",
+                                 "pitch", "exposure", "gamma")))
+
+    def draw(self, fast: bool) -> bool:
         s = self.lab.settings
         state = self.subject()
         if state is None:
             self.canvas.images = []
             self.canvas.update()
             return False
-        full = max(min(self.canvas.width(), self.canvas.height() - 20, 512), 32)
-        size = min(full, 112) if fast else full
+        full = self.side()
+        small = min(full, self.FAST_SIZE)
         lights = [Light(s["theta_i"], s["phi_i"])] + self.FILL_LIGHTS[: s["lights"] - 1]
         ambient = (s["ambient"],) * 3
-        key = state_key(state, size, s["theta_i"], s["phi_i"], s["lights"], s["ambient"],
+        key = state_key(state, s["theta_i"], s["phi_i"], s["lights"], s["ambient"],
                         s["shape"], s["mode"], s["yaw"], s["pitch"])
         self.cache = {k: v for k, v in self.cache.items() if k == id(state)}
-        image = self.cached(state, key, lambda: self.renderer.object(
-            state.model, state.values, lights, ambient, s["shape"], s["mode"], s["yaw"],
-            s["pitch"], size))
+        image, coarse = self.best(state, fast, (*key, small), (*key, full), lambda use_full: (
+            self.renderer.object(state.model, state.values, lights, ambient, s["shape"],
+                                 s["mode"], s["yaw"], s["pitch"], full if use_full else small)))
         self.image = image
         if image is not None:
             caption = f"{state.label}: {MODES[s['mode']]}"
             self.canvas.images = [(tonemap(image, s["exposure"], s["gamma"]), caption,
                                    state.color)]
         self.canvas.update()
-        return size < full
+        return coarse
 
 
 VIEW_CLASSES = [SphereView, PolarView, LobeView, SliceView, AlbedoView, ObjectView]

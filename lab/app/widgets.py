@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from PyQt6.QtCore import Qt, pyqtSignal
-from PyQt6.QtGui import QColor, QIcon, QPixmap
+from PyQt6.QtCore import QEvent, QSize, Qt, pyqtSignal
+from PyQt6.QtGui import QColor, QIcon, QPainter, QPixmap
 from PyQt6.QtWidgets import (
     QCheckBox,
     QColorDialog,
@@ -17,6 +17,7 @@ from PyQt6.QtWidgets import (
     QListWidget,
     QListWidgetItem,
     QPushButton,
+    QSizePolicy,
     QSlider,
     QToolButton,
     QVBoxLayout,
@@ -124,19 +125,26 @@ class ParamControl(QWidget):
         if color.isValid():
             self._set((color.redF(), color.greenF(), color.blueF()))
 
+    def _show_text(self, text: str) -> None:
+        if self.text.text() != text:
+            self.text.setText(text)
+
     def refresh(self) -> None:
         """Show the state's value without echoing it back."""
         value = self.state.values[self.param.name]
         for widget in (self.slider, self.text, self.check, self.combo):
             if widget is not None:
                 widget.blockSignals(True)
+        # Only what changed is touched: a new style sheet re-polishes and lays out again.
         if self.param.kind == "float":
             if slider_value(self.param, self.slider.value()) != value:
                 self.slider.setValue(slider_position(self.param, value))
-            self.text.setText(format_number(value))
+            self._show_text(format_number(value))
         elif self.param.kind == "color":
-            self.swatch.setStyleSheet(f"background: {color_hex(value)}")
-            self.text.setText(", ".join(format_number(c) for c in value))
+            style = f"background: {color_hex(value)}"
+            if self.swatch.styleSheet() != style:
+                self.swatch.setStyleSheet(style)
+            self._show_text(", ".join(format_number(c) for c in value))
         elif self.param.kind == "bool":
             self.check.setChecked(bool(value))
         else:
@@ -243,8 +251,10 @@ class ModelList(QWidget):
             button.clicked.connect(slot)
             buttons.addWidget(button)
         layout.addLayout(buttons)
+        self.shown: list[tuple] = []
         lab.models_changed.connect(self.rebuild)
         lab.changed.connect(self._update_labels)
+        lab.selection_changed.connect(self._update_labels)
 
     def add_selected(self) -> None:
         from lab.models import load_model
@@ -270,9 +280,16 @@ class ModelList(QWidget):
             item.setFlags(item.flags() | Qt.ItemFlag.ItemIsUserCheckable)
             self.list.addItem(item)
         self.list.blockSignals(False)
+        self.shown = []
         self._update_labels()
 
     def _update_labels(self) -> None:
+        # Called on every change: the rows are rebuilt only when what they show changed.
+        shown = [(s.label, s.color, s.visible, s.error, self.lab.solo is s,
+                  s is self.lab.selected) for s in self.lab.models]
+        if shown == self.shown and self.list.count() == len(shown):
+            return
+        self.shown = shown
         self.list.blockSignals(True)
         for row, state in enumerate(self.lab.models):
             item = self.list.item(row)
@@ -299,6 +316,55 @@ class ModelList(QWidget):
             self.lab.models[row].set_visible(item.checkState() == Qt.CheckState.Checked)
 
 
+class LiveText(QWidget):
+    """One line of text that changes often (values, status): a new text only repaints it.
+
+    A QLabel asks its parents to lay themselves out again on every new text, which
+    costs more than a whole frame's drawing; this keeps a fixed height and elides.
+    """
+
+    def __init__(self, text: str = "", width: int | None = None,
+                 align: Qt.AlignmentFlag = Qt.AlignmentFlag.AlignLeft):
+        super().__init__()
+        self._text, self.color, self.align, self.width_ = text, None, align, width
+        self._fit()
+
+    def _fit(self) -> None:
+        metrics = self.fontMetrics()
+        if self.width_ is not None:
+            self.setFixedSize(metrics.horizontalAdvance("0") * self.width_ + 4,
+                              metrics.height() + 4)
+        else:
+            self.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Fixed)
+            self.setFixedHeight(metrics.height() + 4)
+
+    def text(self) -> str:
+        return self._text
+
+    def setText(self, text: str, color: str | None = None) -> None:  # noqa: N802 (Qt style)
+        if text != self._text or color != self.color:
+            self._text, self.color = text, color
+            self.update()
+
+    def sizeHint(self) -> QSize:
+        return QSize(self.fontMetrics().horizontalAdvance(self._text) + 4, self.height())
+
+    def changeEvent(self, event) -> None:
+        if event.type() == QEvent.Type.FontChange:
+            self._fit()
+        super().changeEvent(event)
+
+    def paintEvent(self, event) -> None:
+        painter = QPainter(self)
+        if self.color:
+            painter.setPen(QColor(self.color))
+        rect = self.rect().adjusted(2, 0, -2, 0)
+        text = self.fontMetrics().elidedText(self._text, Qt.TextElideMode.ElideRight,
+                                             rect.width())
+        painter.drawText(rect, self.align | Qt.AlignmentFlag.AlignVCenter, text)
+        painter.end()
+
+
 class SettingSlider(QWidget):
     """A labelled slider bound to one float setting (theta_i, phi_i, exposure, ...)."""
 
@@ -312,8 +378,7 @@ class SettingSlider(QWidget):
         self.slider = QSlider(Qt.Orientation.Horizontal)
         self.slider.setRange(0, round((high - low) / step))
         self.slider.setMinimumWidth(60)
-        self.value_label = QLabel()
-        self.value_label.setFixedWidth(48)
+        self.value_label = LiveText(width=5, align=Qt.AlignmentFlag.AlignRight)
         layout.addWidget(self.slider, 1)
         layout.addWidget(self.value_label)
         self.slider.valueChanged.connect(

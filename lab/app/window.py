@@ -47,6 +47,7 @@ class MainWindow(QMainWindow):
         self.lab = LabState()
         self.frames = 0
         self.frame_times: list[float] = []
+        self.view_times: dict[str, list[float]] = {}  # each view's redraw, for the benchmark
         self.presets = shipped_presets()
         self.preset_index = -1
         self.presenter = False
@@ -189,7 +190,13 @@ class MainWindow(QMainWindow):
         for state in self.lab.models:
             if not state.from_file:
                 state.error = ""
-        self._refine = [v for v in self.views if v.is_shown() and v.redraw(fast=True)]
+        self._refine = []
+        for view in self.views:
+            if view.is_shown():
+                began = time.perf_counter()
+                if view.redraw(fast=True):
+                    self._refine.append(view)
+                self.view_times.setdefault(view.name, []).append(time.perf_counter() - began)
         self.frames += 1
         self.frame_times.append(time.perf_counter() - start)
         if self._refine:
