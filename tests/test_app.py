@@ -228,3 +228,102 @@ def test_no_display_renders_the_gallery(tmp_path):
     assert str(out) in result.stdout
     assert (out / "index.html").exists()
     assert "Traceback" not in result.stderr
+
+
+def test_slice_axes_are_square_and_span_0_to_90(qtbot, window, output_dir):
+    for name in ("phong", "cook_torrance", "ward"):
+        window.lab.add(load_model(name))
+    settle(qtbot, window)
+    view = window.view("slice")
+    axes = view.axes()
+    assert len(axes) == 3
+    sides = set()
+    for theta_h, theta_d, rect in axes:
+        assert theta_h == (0.0, 90.0) and theta_d == (0.0, 90.0)
+        assert rect.width() == rect.height() >= 48  # equal aspect, readable
+        assert view.canvas.rect().contains(rect)
+        sides.add(rect.width())
+    assert len(sides) == 1  # every model's slice at the same scale
+    # The images are drawn at the plots' size (no stretching) once refined.
+    for (_, image), (_, _, rect) in zip(view.data, axes, strict=True):
+        assert image.shape[:2] == (rect.height(), rect.width())
+    view.export_png(output_dir / "app_view_slice_three.png")
+
+
+def test_views_recompute_only_what_changed(qtbot, window, app_renderer, monkeypatch):
+    window.lab.add(load_model("phong"))
+    window.lab.add(load_model("lambert"))
+    settle(qtbot, window)
+    calls: list[tuple[str, str]] = []
+    for method in ("sphere", "polar", "lobe3d", "slice", "albedo", "object", "probe"):
+        original = getattr(app_renderer, method)
+
+        def counted(model, *args, _method=method, _original=original, **kwargs):
+            calls.append((_method, model.name))
+            return _original(model, *args, **kwargs)
+
+        monkeypatch.setattr(app_renderer, method, counted)
+    draws = {view.name: view.draws for view in window.views}
+    # The light: the slice and the albedo do not depend on theta_i; nothing redraws them.
+    window.theta_slider.slider.setValue(window.theta_slider.slider.value() + 10)
+    settle(qtbot, window)
+    made = {method for method, _ in calls}
+    assert "slice" not in made and "albedo" not in made
+    assert {"sphere", "polar", "lobe3d", "object"} <= made
+    assert window.view("slice").draws == draws["slice"]
+    assert window.view("albedo").draws == draws["albedo"]
+    assert window.view("sphere").draws > draws["sphere"]
+    # One model's parameter: only that model is computed again, in every view.
+    calls.clear()
+    phong = window.lab.models[0]
+    window.lab.select(phong)
+    control = window.params.controls["ke"]
+    control.slider.setValue(control.slider.value() + 100)
+    settle(qtbot, window)
+    assert calls and {name for _, name in calls} == {"phong"}
+    assert {"sphere", "polar", "lobe3d", "slice", "albedo"} <= {m for m, _ in calls}
+    # Nothing changed: a frame costs no rendering at all.
+    calls.clear()
+    draws = {view.name: view.draws for view in window.views}
+    settle(qtbot, window)
+    assert calls == [] and draws == {view.name: view.draws for view in window.views}
+
+
+def test_parameters_in_view_without_scrolling(qtbot, window):
+    window.lab.add(load_model("phong"))
+    window.lab.add(load_model("cook_torrance"))
+    settle(qtbot, window)
+    assert window.lab.selected.model.name == "cook_torrance"
+    controls = window.params.controls
+    assert len(controls) >= 7
+    for name, control in controls.items():
+        shown = control.visibleRegion().boundingRect()
+        assert shown.height() == control.height() and shown.width() == control.width(), name
+    # The formula folds out on demand and is the title's tooltip.
+    assert window.params.formula.isHidden() and "f_r" in window.params.title.toolTip()
+    window.params.formula_button.setChecked(True)
+    assert not window.params.formula.isHidden() and "f_r" in window.params.formula.text()
+
+
+def test_presenter_mode_enlarges_text_and_keeps_views(qtbot, window, output_dir):
+    window.lab.add(load_model("phong"))
+    window.lab.add(load_model("cook_torrance"))
+    settle(qtbot, window)
+    size = window.params.title.font().pointSizeF()
+    tick = window.view("albedo").plot.getAxis("bottom").style["tickFont"]
+    window.toggle_presenter()
+    try:
+        qtbot.wait(200)
+        settle(qtbot, window)
+        assert window.params.title.font().pointSizeF() > 1.4 * size
+        bigger = window.view("albedo").plot.getAxis("bottom").style["tickFont"]
+        assert bigger is not None and (tick is None or bigger.pointSizeF() > tick.pointSizeF())
+        for view in window.views:
+            assert view.is_shown(), view.name
+        for _, _, rect in window.view("slice").axes():
+            assert rect.width() == rect.height() >= 40
+        window.grab().save(str(output_dir / "app_presenter.png"))
+    finally:
+        window.toggle_presenter()
+    qtbot.wait(100)
+    assert window.params.title.font().pointSizeF() == pytest.approx(size)

@@ -16,8 +16,8 @@ import pyqtgraph as pg
 from PyQt6.QtCore import QPointF, QRect, Qt
 from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
 from PyQt6.QtWidgets import (
+    QComboBox,
     QHBoxLayout,
-    QLabel,
     QPushButton,
     QVBoxLayout,
     QWidget,
@@ -132,6 +132,31 @@ class View(QWidget):
     def invalidate(self) -> None:
         self.drawn = None
 
+    def plot_items(self) -> list[pg.PlotItem]:
+        """The pyqtgraph plots in the view (their fonts follow presenter mode)."""
+        items = []
+        for widget in self.findChildren(pg.GraphicsView):
+            items += [item for item in widget.items() if isinstance(item, pg.PlotItem)]
+        return items
+
+    def apply_font(self, font: QFont) -> None:
+        """Presenter mode: pyqtgraph draws its text with its own fonts; give them ours."""
+        small = QFont(font)
+        small.setPointSizeF(font.pointSizeF() * 0.9)
+        for plot in self.plot_items():
+            for name in ("left", "bottom"):
+                axis = plot.getAxis(name)
+                axis.setStyle(tickFont=small)
+                axis.label.setFont(small)
+                axis.setLabel(axis.labelText, axis.labelUnits)
+                if name == "left" and axis.fixedWidth is not None:
+                    axis.setWidth(QFontMetrics(small).horizontalAdvance("0.00") * 2 + 8)
+        for item in self.findChildren(QWidget):
+            item.update()
+        for text in getattr(self, "texts", []):
+            text.setFont(small)
+        self.invalidate()
+
     def resizeEvent(self, event) -> None:
         super().resizeEvent(event)
         request = getattr(self.window(), "request", None)
@@ -183,9 +208,12 @@ class ImageRow(QWidget):
         self.setMinimumSize(160, 120)
         opaque(self)
 
+    def caption_height(self) -> int:
+        return max(self.CAPTION, self.fontMetrics().height() + 4)
+
     def cell(self) -> tuple[int, int]:
         n = max(len(self.images), 1)
-        side = max(min(self.width() // n, self.height() - self.CAPTION), 16)
+        side = max(min(self.width() // n, self.height() - self.caption_height()), 16)
         return n, side
 
     def paintEvent(self, event) -> None:
@@ -200,7 +228,9 @@ class ImageRow(QWidget):
             else:
                 painter.drawImage(QRect(left, 0, side, side), image)
             painter.setPen(QColor(color))
-            painter.drawText(QRect(left, side, side, self.CAPTION),
+            caption = painter.fontMetrics().elidedText(caption, Qt.TextElideMode.ElideMiddle,
+                                                       side)
+            painter.drawText(QRect(left, side, side, self.caption_height()),
                              Qt.AlignmentFlag.AlignCenter, caption)
         painter.end()
 
@@ -251,7 +281,8 @@ class SphereView(View):
     def side(self) -> int:
         """The spheres' size on screen: they are rendered at exactly that size."""
         n = max(len(self.lab.visible_models()), 1)
-        side = max(min(self.canvas.width() // n, self.canvas.height() - ImageRow.CAPTION), 32)
+        side = max(min(self.canvas.width() // n,
+                       self.canvas.height() - self.canvas.caption_height()), 32)
         return min(side, 512)
 
     def inputs(self) -> tuple:
@@ -320,15 +351,17 @@ class PolarView(View):
             self.plot.plot(r * np.sin(angle), r * np.cos(angle), pen=grid)
         self.plot.plot([-1.05, 1.05], [0, 0], pen=pg.mkPen((150, 150, 150)))
         self.marks = []
+        self.texts: list[pg.TextItem] = []
         for label, color in (("normal", (200, 200, 200)), ("incident", (255, 210, 0)),
                              ("mirror", (120, 200, 255))):
             line = self.plot.plot(pen=pg.mkPen(color, width=1, style=Qt.PenStyle.DashLine))
             text = pg.TextItem(label, color=color, anchor=(0.5, 1.0))
             self.plot.addItem(text)
+            self.texts.append(text)
             self.marks.append((line, text))
         self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
         self.marked: float | None = None
-        self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.1, 1.2), padding=0)
+        self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.1, 1.32), padding=0)
 
     def radius(self, values: np.ndarray, peak: float) -> np.ndarray:
         if self.lab.settings["polar_log"]:
@@ -492,7 +525,7 @@ class LobeView(View):
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
-        self.tools.addWidget(LiveText("drag to rotate, wheel to zoom; scale as the polar plot"))
+        self.tools.addWidget(LiveText("drag: rotate, wheel: zoom"))
         self.fast = False
         self.canvas = LobeCanvas(self)
         self.layout_.addWidget(self.canvas, 1)
@@ -564,33 +597,50 @@ class SliceCanvas(QWidget):
     same scale, whatever the widget's shape.
     """
 
-    TICKS = (0, 30, 60, 90)
-
     def __init__(self):
         super().__init__()
         self.images: list[tuple[QImage, str, str]] = []
         self.setMinimumSize(160, 120)
         opaque(self)
 
+    def axis_font(self) -> QFont:
+        """Tick and axis labels a little smaller than the titles (presenter fonts too)."""
+        font = QFont(self.font())
+        font.setPointSizeF(max(self.font().pointSizeF() * 0.85, 6.0))
+        return font
+
     def margins(self) -> tuple[int, int, int, int]:
         """Left, top, right and bottom room around each plot for titles, ticks, labels."""
-        fm = QFontMetrics(self.font())
+        fm = QFontMetrics(self.axis_font())
         line = fm.height()
-        return (fm.horizontalAdvance("90") + line + 12, line + 4, 10, 2 * line + 8)
+        title = QFontMetrics(self.font()).height()
+        return (fm.horizontalAdvance("90°") + line + 10, title + 4, 12, 2 * line + 6)
 
     def plot_rects(self, count: int | None = None) -> list[QRect]:
-        """Where each image goes: squares of one size, side by side, centred."""
+        """Where each image goes: squares of one size in the grid (columns x rows) that
+        makes them largest, centred."""
         n = max(count if count is not None else len(self.images), 1)
         left, top, right, bottom = self.margins()
-        cell = self.width() // n
-        side = max(min(cell - left - right, self.height() - top - bottom), 16)
-        x0 = (self.width() - n * (left + side + right)) // 2
-        return [QRect(x0 + i * (left + side + right) + left, top, side, side) for i in range(n)]
+        best = (0, 1, 1)
+        for cols in range(1, n + 1):
+            rows = -(-n // cols)
+            side = min(self.width() // cols - left - right, self.height() // rows - top - bottom)
+            if side > best[0]:
+                best = (side, cols, rows)
+        side, cols, rows = best
+        side = max(side, 16)
+        cell_w, cell_h = left + side + right, top + side + bottom
+        x0 = (self.width() - cols * cell_w) // 2
+        y0 = (self.height() - rows * cell_h) // 2
+        return [QRect(x0 + (i % cols) * cell_w + left, y0 + (i // cols) * cell_h + top,
+                      side, side) for i in range(n)]
 
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor(*BACKGROUND))
-        fm = QFontMetrics(self.font())
+        title_metrics = QFontMetrics(self.font())
+        font = self.axis_font()
+        fm = QFontMetrics(font)
         line = fm.height()
         axis = QColor(170, 170, 170)
         for rect, (image, caption, color) in zip(self.plot_rects(), self.images, strict=False):
@@ -598,28 +648,36 @@ class SliceCanvas(QWidget):
                 painter.drawImage(rect.topLeft(), image)
             else:
                 painter.drawImage(rect, image)
+            painter.setFont(self.font())
             painter.setPen(QColor(color))
-            painter.drawText(QRect(rect.left(), 0, rect.width(), line + 2),
-                             Qt.AlignmentFlag.AlignCenter, caption)
+            room = rect.width() + 40
+            painter.drawText(QRect(rect.left() - 20, rect.top() - title_metrics.height() - 3,
+                                   room, title_metrics.height() + 2),
+                             Qt.AlignmentFlag.AlignCenter,
+                             title_metrics.elidedText(caption, Qt.TextElideMode.ElideRight,
+                                                      room))
+            painter.setFont(font)
             painter.setPen(QPen(axis, 1))
             painter.drawRect(rect.adjusted(0, 0, -1, -1))
-            for tick in self.TICKS:
+            room = rect.width() / fm.horizontalAdvance("90° ")
+            ticks = (0, 30, 60, 90) if room >= 4.5 else (0, 45, 90) if room >= 3 else (0, 90)
+            for tick in ticks:
                 x = rect.left() + round(tick / 90 * (rect.width() - 1))
                 y = rect.bottom() - round(tick / 90 * (rect.height() - 1))
-                painter.drawLine(x, rect.bottom(), x, rect.bottom() + 4)
-                painter.drawLine(rect.left() - 4, y, rect.left(), y)
-                painter.drawText(QRect(x - 20, rect.bottom() + 5, 40, line),
-                                 Qt.AlignmentFlag.AlignHCenter, str(tick))
-                painter.drawText(QRect(rect.left() - 46, y - line // 2, 40, line),
+                painter.drawLine(x, rect.bottom(), x, rect.bottom() + 3)
+                painter.drawLine(rect.left() - 3, y, rect.left(), y)
+                painter.drawText(QRect(x - 30, rect.bottom() + 4, 60, line),
+                                 Qt.AlignmentFlag.AlignHCenter, f"{tick}°")
+                painter.drawText(QRect(rect.left() - 64, y - line // 2, 60, line),
                                  Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
-                                 str(tick))
-            painter.drawText(QRect(rect.left(), rect.bottom() + 5 + line, rect.width(), line),
-                             Qt.AlignmentFlag.AlignHCenter, "θh (deg)")
+                                 f"{tick}°")
+            painter.drawText(QRect(rect.left(), rect.bottom() + 4 + line, rect.width(), line),
+                             Qt.AlignmentFlag.AlignHCenter, "θh")
             painter.save()
-            painter.translate(rect.left() - fm.horizontalAdvance("90") - 10, rect.center().y())
+            painter.translate(rect.left() - fm.horizontalAdvance("90°") - 8, rect.center().y())
             painter.rotate(-90)
             painter.drawText(QRect(-rect.height() // 2, -line, rect.height(), line),
-                             Qt.AlignmentFlag.AlignCenter, "θd (deg)")
+                             Qt.AlignmentFlag.AlignCenter, "θd")
             painter.restore()
         painter.end()
 
@@ -634,8 +692,10 @@ class SliceView(View):
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
         s = lab.settings
-        self.tools.addWidget(SettingSlider(s, "phi_d", "φd", 0.0, 180.0, 1.0), 1)
-        self.tools.addWidget(QLabel("tone as the spheres"))
+        phi_d = SettingSlider(s, "phi_d", "φd", 0.0, 180.0, 1.0)
+        phi_d.setToolTip("the slice's difference azimuth; the images use the spheres' "
+                         "exposure and gamma")
+        self.tools.addWidget(phi_d, 1)
         self.canvas = SliceCanvas()
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, np.ndarray]] = []
@@ -780,10 +840,17 @@ class ObjectView(View):
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
         s = lab.settings
-        self.tools.addWidget(SettingCombo(s, "shape", SHAPES))
-        self.tools.addWidget(SettingCombo(s, "mode", MODES))
-        self.tools.addWidget(SettingSlider(s, "lights", "lights", 1, 4, 1), 1)
-        self.tools.addWidget(SettingSlider(s, "ambient", "ambient", 0.0, 0.3, 0.01), 1)
+        for name, items in (("shape", SHAPES), ("mode", MODES)):
+            combo = SettingCombo(s, name, items)
+            # Long choices must not set the view's width: the menu shows them in full.
+            combo.setSizeAdjustPolicy(
+                QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+            combo.setMinimumContentsLength(6)
+            self.tools.addWidget(combo, 1)
+        more = QHBoxLayout()  # a second row: the view stays narrow enough to share a row
+        more.addWidget(SettingSlider(s, "lights", "lights", 1, 4, 1), 1)
+        more.addWidget(SettingSlider(s, "ambient", "ambient", 0.0, 0.3, 0.01), 1)
+        self.layout_.addLayout(more)
         self.canvas = ImageRow(self.drag)
         self.layout_.addWidget(self.canvas, 1)
         self.image: np.ndarray | None = None
@@ -806,7 +873,8 @@ class ObjectView(View):
         return visible[0] if visible else None
 
     def side(self) -> int:
-        return max(min(self.canvas.width(), self.canvas.height() - ImageRow.CAPTION, 512), 32)
+        return max(min(self.canvas.width(), self.canvas.height() - self.canvas.caption_height(),
+                       512), 32)
 
     def inputs(self) -> tuple:
         s = self.lab.settings

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from html import escape
 
 from PyQt6.QtCore import QEvent, QSize, Qt, pyqtSignal
 from PyQt6.QtGui import QColor, QIcon, QPainter, QPixmap
@@ -155,7 +156,11 @@ class ParamControl(QWidget):
 
 
 class ParamPanel(QWidget):
-    """The selected model's parameters, built from its header."""
+    """The selected model's parameters, built from its header.
+
+    The title takes one line; the formula folds out under it (and is the title's tooltip),
+    so the sliders stay in view at 1280x800.
+    """
 
     def __init__(self, lab: LabState):
         super().__init__()
@@ -163,14 +168,38 @@ class ParamPanel(QWidget):
         self.controls: dict[str, ParamControl] = {}
         self.current: ModelState | None = None
         self.layout_ = QVBoxLayout(self)
+        self.layout_.setContentsMargins(4, 4, 4, 4)
+        self.layout_.setSpacing(4)
+        header = QHBoxLayout()
         self.title = QLabel()
         self.title.setWordWrap(True)
-        self.layout_.addWidget(self.title)
+        self.title.setTextFormat(Qt.TextFormat.RichText)
+        header.addWidget(self.title, 1)
+        self.formula_button = QToolButton()
+        self.formula_button.setText("formula")
+        self.formula_button.setCheckable(True)
+        self.formula_button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        self.formula_button.setArrowType(Qt.ArrowType.RightArrow)
+        self.formula_button.setToolTip("show the model's formula from its shader header")
+        self.formula_button.toggled.connect(self._show_formula)
+        header.addWidget(self.formula_button, 0, Qt.AlignmentFlag.AlignTop)
+        self.layout_.addLayout(header)
+        self.formula = QLabel()
+        self.formula.setWordWrap(True)
+        self.formula.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.formula.setStyleSheet("QLabel { background: palette(base); padding: 4px; }")
+        self.formula.hide()
+        self.layout_.addWidget(self.formula)
         self.form_host = QWidget()
         self.layout_.addWidget(self.form_host)
         self.layout_.addStretch(1)
         lab.selection_changed.connect(self.rebuild)
         self.rebuild()
+
+    def _show_formula(self, shown: bool) -> None:
+        self.formula_button.setArrowType(Qt.ArrowType.DownArrow if shown
+                                         else Qt.ArrowType.RightArrow)
+        self.formula.setVisible(shown and bool(self.formula.text()))
 
     def rebuild(self) -> None:
         if self.current is not None:
@@ -182,14 +211,20 @@ class ParamPanel(QWidget):
         self.form_host.setParent(None)
         self.form_host = QWidget()
         form = QFormLayout(self.form_host)
+        form.setContentsMargins(0, 0, 0, 0)
+        form.setVerticalSpacing(3)
         self.controls = {}
         state = self.current
         if state is None:
             self.title.setText("No model: add one from the list above.")
+            self.title.setToolTip("")
+            self.formula.setText("")
         else:
             model = state.model
-            formula = "<br>".join(model.formula)
-            self.title.setText(f"<b>{state.label}</b> — {model.title}<br><small>{formula}</small>")
+            formula = "<br>".join(escape(line) for line in model.formula)
+            self.title.setText(f"<b>{escape(state.label)}</b> — {escape(model.title)}")
+            self.title.setToolTip(f"<p style='white-space:pre'>{formula}</p>" if formula else "")
+            self.formula.setText(f"<small>{formula}</small>" if formula else "")
             for param in model.params.values():
                 control = ParamControl(state, param)
                 label = QLabel(param.name)
@@ -197,7 +232,9 @@ class ParamPanel(QWidget):
                 form.addRow(label, control)
                 self.controls[param.name] = control
             state.changed.connect(self.refresh)
-        self.layout_.insertWidget(1, self.form_host)
+        self.formula_button.setEnabled(bool(self.formula.text()))
+        self._show_formula(self.formula_button.isChecked())
+        self.layout_.insertWidget(2, self.form_host)
 
     def refresh(self) -> None:
         state = self.current
@@ -235,19 +272,23 @@ class ModelList(QWidget):
         row.addWidget(opener)
         layout.addLayout(row)
         self.list = QListWidget()
-        self.list.setMaximumHeight(140)
+        self.list.setToolTip("tick: visible in the views; select: edit its parameters")
+        self.list.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
         self.list.currentRowChanged.connect(self._selected)
         self.list.itemChanged.connect(self._checked)
         layout.addWidget(self.list)
         buttons = QHBoxLayout()
+        buttons.setSpacing(2)
         for text, slot, tip in (
             ("Duplicate", lambda: self._on_current(self.lab.duplicate), "a copy to vary"),
             ("Remove", lambda: self._on_current(self.lab.remove), "remove the model"),
             ("Solo", lambda: self._on_current(self.lab.set_solo), "show only this model"),
             ("Colour", self.pick_color, "the model's colour in every view"),
         ):
-            button = QPushButton(text)
+            button = QToolButton()
+            button.setText(text)
             button.setToolTip(tip)
+            button.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
             button.clicked.connect(slot)
             buttons.addWidget(button)
         layout.addLayout(buttons)
@@ -282,6 +323,19 @@ class ModelList(QWidget):
         self.list.blockSignals(False)
         self.shown = []
         self._update_labels()
+        self.fit_rows()
+
+    def fit_rows(self) -> None:
+        """As tall as its rows (two to five of them): the parameters below stay in view."""
+        rows = min(max(self.list.count(), 2), 5)
+        height = self.list.sizeHintForRow(0) if self.list.count() else 0
+        height = height if height > 0 else self.list.fontMetrics().height() + 4
+        self.list.setFixedHeight(rows * height + 2 * self.list.frameWidth() + 2)
+
+    def changeEvent(self, event) -> None:
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:
+            self.fit_rows()
 
     def _update_labels(self) -> None:
         # Called on every change: the rows are rebuilt only when what they show changed.

@@ -12,6 +12,7 @@ from PyQt6.QtWidgets import (
     QApplication,
     QDockWidget,
     QFileDialog,
+    QFrame,
     QMainWindow,
     QPlainTextEdit,
     QScrollArea,
@@ -53,6 +54,9 @@ class MainWindow(QMainWindow):
         self.presenter = False
         self.base_font = QFont(QApplication.font())
         self.setDockNestingEnabled(True)
+        # The controls take the whole left edge: room for every parameter at 1280x800.
+        self.setCorner(Qt.Corner.BottomLeftCorner, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self.setCorner(Qt.Corner.TopLeftCorner, Qt.DockWidgetArea.LeftDockWidgetArea)
         self._build_controls()
         self.views: list[View] = []
         self.docks: dict[str, QDockWidget] = {}
@@ -76,11 +80,20 @@ class MainWindow(QMainWindow):
         self.reload_timer.timeout.connect(self._reload_changed)
         self.statusBar().showMessage("ready")  # created now so the layout does not jump later
         self.resize(1280, 800)
+        self._fitted = False
+
+    def showEvent(self, event) -> None:
+        super().showEvent(event)
+        if not self._fitted:  # dock sizes need the window's real size: once, when first shown
+            self._fitted = True
+            QTimer.singleShot(0, self.fit_docks)
 
     # -- layout -------------------------------------------------------------------------
     def _build_controls(self) -> None:
         panel = QWidget()
         layout = QVBoxLayout(panel)
+        layout.setContentsMargins(4, 4, 4, 4)
+        layout.setSpacing(4)
         self.model_list = ModelList(self.lab)
         self.model_list.open_file.connect(self.ask_open)
         layout.addWidget(self.model_list)
@@ -94,10 +107,12 @@ class MainWindow(QMainWindow):
         scroll.setWidgetResizable(True)
         scroll.setWidget(self.params)
         layout.addWidget(scroll, 1)
+        scroll.setFrameShape(QFrame.Shape.NoFrame)
         dock = QDockWidget("Models, light and parameters", self)
         dock.setObjectName("controls")
         dock.setWidget(panel)
-        dock.setMinimumWidth(330)
+        dock.setMinimumWidth(300)
+        self.controls_dock = dock
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
         self.errors = QPlainTextEdit()
         self.errors.setReadOnly(True)
@@ -131,8 +146,25 @@ class MainWindow(QMainWindow):
         self.splitDockWidget(self.docks["lobe3d"], self.docks["sh"], Qt.Orientation.Horizontal)
         self.splitDockWidget(self.docks["slice"], self.docks["albedo"], Qt.Orientation.Horizontal)
         self.splitDockWidget(self.docks["albedo"], self.docks["object"], Qt.Orientation.Horizontal)
-        self.resizeDocks([self.docks["sphere"], self.docks["polar"]], [320, 260],
+
+    def fit_docks(self) -> None:
+        """Dock sizes for the window's size: controls 27 % of the width (at least 300 px),
+        the spheres' row a quarter of the height, the rest to the plots."""
+        width, height = max(self.width(), 800), max(self.height(), 600)
+        left = max(300, int(0.27 * width))
+        # Qt moves a separator only when the docks on both sides of it are named.
+        self.resizeDocks([self.controls_dock, self.docks["sphere"]], [left, width - left],
+                         Qt.Orientation.Horizontal)
+        self.resizeDocks([self.docks["sphere"], self.docks["polar"], self.docks["slice"]],
+                         [int(0.28 * height), int(0.32 * height), int(0.4 * height)],
                          Qt.Orientation.Vertical)
+        right = width - left
+        self.resizeDocks([self.docks["polar"], self.docks["lobe3d"], self.docks["sh"]],
+                         [int(0.33 * right), int(0.3 * right), int(0.37 * right)],
+                         Qt.Orientation.Horizontal)
+        self.resizeDocks([self.docks["slice"], self.docks["albedo"], self.docks["object"]],
+                         [int(0.34 * right), int(0.31 * right), int(0.35 * right)],
+                         Qt.Orientation.Horizontal)
 
     def view(self, name: str) -> View:
         return next(v for v in self.views if v.name == name)
@@ -204,11 +236,12 @@ class MainWindow(QMainWindow):
         self.frame_done.emit(self.frames)
 
     def _refine_step(self) -> None:
-        # One view per event-loop turn, so a refinement never holds back user input.
+        # One view's step (one model's full-quality result) per event-loop turn, so a
+        # refinement never holds back user input for long; unfinished views queue again.
         if self._refine:
             view = self._refine.pop(0)
-            if view.is_shown():
-                view.redraw(fast=False)
+            if view.is_shown() and view.redraw(fast=False):
+                self._refine.append(view)
         if self._refine:
             self.refine_timer.start(0)
 
@@ -390,10 +423,15 @@ class MainWindow(QMainWindow):
         QApplication.setFont(font)
         for widget in self.findChildren(QWidget):
             widget.setFont(font)
+        for view in self.views:
+            view.apply_font(font)
         if self.presenter:
             self.showFullScreen()
         else:
             self.showNormal()
+        # The new fonts and the new window size want the docks laid out again.
+        QTimer.singleShot(50, self.fit_docks)
+        self.request()
 
     # -- export -------------------------------------------------------------------------
     def ask_export(self, view: View) -> None:
