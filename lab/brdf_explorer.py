@@ -175,12 +175,17 @@ def parse_brdf(text: str, path: str | Path) -> ExplorerModel:
         if marker is not None:
             action, name = marker
             if not name:
-                raise ModelError(f"'{stripped}' needs a section name, e.g. '::{action} shader'",
-                                 path, number)
+                raise ModelError(
+                    f"'{stripped}' needs a section name, e.g. '::{action} shader'", path, number
+                )
             if action == "begin":
                 if section:
-                    raise ModelError(f"::begin {name} inside ::begin {section} (close it with "
-                                     f"::end {section} first)", path, number)
+                    raise ModelError(
+                        f"::begin {name} inside ::begin {section} (close it with "
+                        f"::end {section} first)",
+                        path,
+                        number,
+                    )
                 section = name
                 if section == "shader":  # as in BRDF Explorer, a later shader section wins
                     shader, shader_line = [], number + 1
@@ -206,12 +211,17 @@ def parse_brdf(text: str, path: str | Path) -> ExplorerModel:
         raise ModelError("no '::begin shader' section with the BRDF function", path, len(lines))
     code = "\n".join(shader)
     if not re.search(r"\bvec3\s+BRDF\s*\(", code):
-        raise ModelError("the shader section defines no 'vec3 BRDF(vec3 L, vec3 V, ...)'", path,
-                         shader_line)
+        raise ModelError(
+            "the shader section defines no 'vec3 BRDF(vec3 L, vec3 V, ...)'", path, shader_line
+        )
     name = re.sub(r"\W", "_", path.stem)
     return ExplorerModel(
-        name=name, path=path, code=code, title=f"BRDF Explorer model {path.name}",
-        params=params, shader_line=shader_line,
+        name=name,
+        path=path,
+        code=code,
+        title=f"BRDF Explorer model {path.name}",
+        params=params,
+        shader_line=shader_line,
     )
 
 
@@ -244,8 +254,10 @@ vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }"""
 def _defines(names, prefix: str) -> tuple[str, str]:
     """`#define NAME PREFIXNAME` lines for `names` and the `#undef` lines that end them."""
     names = sorted(names)
-    return ("\n".join(f"#define {n} {prefix}{n}" for n in names),
-            "\n".join(f"#undef {n}" for n in names))
+    return (
+        "\n".join(f"#define {n} {prefix}{n}" for n in names),
+        "\n".join(f"#undef {n}" for n in names),
+    )
 
 
 def assemble(
