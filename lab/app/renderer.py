@@ -32,12 +32,12 @@ def spatially_varying(source: glsl.Source, model: Model) -> None:
     first_color = True
     for p in model.params.values():
         if p.kind == "color":
-            scale = " * albedo" if first_color else ""
+            scale = " * sv_albedo" if first_color else ""
             first_color = False
             body.append(f"    {p.name} = {p.name}_base{scale};")
         elif p.kind == "float" and p.scale == "log":
             limits = f"{p.minimum:.9g}, {p.maximum:.9g}"
-            body.append(f"    {p.name} = sv_vary({p.name}_base, {limits}, vary);")
+            body.append(f"    {p.name} = sv_vary({p.name}_base, {limits}, sv_amount);")
         elif p.kind == "float":
             body.append(f"    {p.name} = {p.name}_base;")
     source.add(
@@ -46,7 +46,7 @@ def spatially_varying(source: glsl.Source, model: Model) -> None:
         "    float far_end = (a - log(lo) > log(hi) - a) ? log(lo) : log(hi);\n"
         "    return exp(mix(a, far_end, 0.75 * t));\n"
         "}\n"
-        "void sv_assign(float vary, vec3 albedo) {\n" + "\n".join(body) + "\n}",
+        "void sv_assign(float sv_amount, vec3 sv_albedo) {\n" + "\n".join(body) + "\n}",
         "<host: spatially varying parameters>",
     )
 

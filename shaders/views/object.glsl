@@ -15,7 +15,7 @@ uniform float u_yaw;
 uniform float u_pitch;
 out vec4 frag_color;
 
-void sv_assign(float vary, vec3 albedo);
+void sv_assign(float sv_amount, vec3 sv_albedo);
 
 mat3 object_rotation() {
     float cy = cos(u_yaw), sy = sin(u_yaw), cp = cos(u_pitch), sp = sin(u_pitch);
@@ -97,14 +97,15 @@ void main() {
     vec3 Y = cross(N, X);
     vec3 V = -ray;
     vec2 uv = shape_uv(q);
-    vec3 albedo = albedo_map(uv);
+    // Not called `albedo`: models have parameters of that name.
+    vec3 texture_albedo = albedo_map(uv);
     if (u_mode == 3) {
-        sv_assign(vary_map(uv), albedo);
+        sv_assign(vary_map(uv), texture_albedo);
     } else {
         sv_assign(0.0, vec3(1.0));
     }
     vec3 color = vec3(0.0);
-    vec3 diffuse = u_mode == 0 ? vec3(0.7) : albedo;
+    vec3 diffuse = u_mode == 0 ? vec3(0.7) : texture_albedo;
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         vec3 L = u_light_dir[i];
         float cosine = max(dot(N, L), 0.0);
