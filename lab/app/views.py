@@ -765,8 +765,10 @@ class AlbedoView(View):
         self.plot.hideButtons()
         self.layout_.addWidget(self.plot, 1)
         self.data: list[tuple[ModelState, np.ndarray, np.ndarray]] = []
-        self.plot.addItem(pg.InfiniteLine(pos=1.0, angle=0, pen=pg.mkPen(
-            (220, 220, 220), style=Qt.PenStyle.DashLine), label="albedo = 1"))
+        unit = pg.InfiniteLine(pos=1.0, angle=0, pen=pg.mkPen(
+            (220, 220, 220), style=Qt.PenStyle.DashLine), label="albedo = 1")
+        self.plot.addItem(unit)
+        self.texts = [unit.label]
         self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
         self.top = 0.0
         self.set_top(1.0)

@@ -418,6 +418,7 @@ class MainWindow(QMainWindow):
     def toggle_presenter(self) -> None:
         self.presenter = not self.presenter
         font = QFont(self.base_font)
+        font.setBold(False)  # set, not inherited: the docks' bold titles stay theirs
         if self.presenter:
             font.setPointSizeF(self.base_font.pointSizeF() * 1.6)
         QApplication.setFont(font)
@@ -425,6 +426,12 @@ class MainWindow(QMainWindow):
             widget.setFont(font)
         for view in self.views:
             view.apply_font(font)
+        # A dock paints its title in the platform's small title font unless its own font
+        # differs from the application's: bold titles at the presenter size.
+        title = QFont(font)
+        title.setBold(self.presenter)
+        for dock in self.findChildren(QDockWidget):
+            dock.setFont(title)
         if self.presenter:
             self.showFullScreen()
         else:
