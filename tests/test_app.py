@@ -282,6 +282,12 @@ def test_views_recompute_only_what_changed(qtbot, window, app_renderer, monkeypa
     settle(qtbot, window)
     assert calls and {name for _, name in calls} == {"phong"}
     assert {"sphere", "polar", "lobe3d", "slice", "albedo"} <= {m for m, _ in calls}
+    # Selecting another model redraws the views that show the selected one.
+    calls.clear()
+    with qtbot.waitSignal(window.frame_done, timeout=5000):
+        window.lab.select(window.lab.models[1])
+    assert ("object", "lambert") in calls
+    settle(qtbot, window)
     # Nothing changed: a frame costs no rendering at all.
     calls.clear()
     draws = {view.name: view.draws for view in window.views}

@@ -69,6 +69,7 @@ class MainWindow(QMainWindow):
         self.refine_timer.setSingleShot(True)
         self.refine_timer.timeout.connect(self._refine_step)
         self.lab.changed.connect(self.request)
+        self.lab.selection_changed.connect(self.request)  # the object and SH views follow it
         # Watched model files: reload on save, keep the last good version on errors.
         self.watcher = QFileSystemWatcher(self)
         self.watcher.fileChanged.connect(self._file_changed)
