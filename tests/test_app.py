@@ -333,3 +333,20 @@ def test_presenter_mode_enlarges_text_and_keeps_views(qtbot, window, output_dir)
         window.toggle_presenter()
     qtbot.wait(100)
     assert window.params.title.font().pointSizeF() == pytest.approx(size)
+
+
+def test_tonemap_matches_the_formula():
+    from lab.app.views import BACKGROUND, tonemap
+
+    rng = np.random.default_rng(1)
+    image = rng.uniform(0.0, 2.0, (5, 7, 4)).astype(np.float32)
+    image[..., 3] = rng.choice([0.0, 0.5, 1.0], (5, 7))
+    image[0, 0, :3] = (np.nan, np.inf, -np.inf)
+    qimage = tonemap(image, -0.5, 2.2)
+    bits = qimage.constBits().asstring(qimage.sizeInBytes())
+    got = np.frombuffer(bits, np.uint8).reshape(5, -1, 4)[:, :7, 2::-1]  # BGRA -> RGB
+    rgb = np.clip(np.nan_to_num(image[..., :3].astype(np.float64), nan=0.0) * 2 ** -0.5, 0, 1)
+    rgb = rgb ** (1 / 2.2)
+    alpha = image[..., 3:4]
+    expected = (rgb * alpha + np.array(BACKGROUND) / 255 * (1 - alpha)) * 255
+    assert np.abs(got - expected).max() <= 1.0  # NaN, +inf and -inf pixels included

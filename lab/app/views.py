@@ -32,25 +32,28 @@ from lab.render import Light
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 BACKGROUND = (40, 40, 44)
-_BACKGROUND = np.array(BACKGROUND, np.float32) / 255.0
+_BACKGROUND_BGR = np.array(BACKGROUND[::-1], np.float32) / 255.0
 
 
 def tonemap(image: np.ndarray, exposure: float, gamma: float) -> QImage:
     """Float RGB(A) -> QImage: 2^exposure, clamp, 1/gamma, background where alpha is 0.
 
-    Float32 throughout, and the QImage is 32-bit RGB: the raster engine draws that format
-    without converting it on every paint.
+    Float32 in place throughout (it runs for every image of every frame), built in the
+    BGRA byte order of a 32-bit RGB QImage, which the raster engine draws unconverted.
     """
-    rgb = np.nan_to_num(image[..., :3] * np.float32(2.0 ** exposure), nan=0.0, copy=False)
-    np.clip(rgb, 0.0, 1.0, out=rgb)
-    np.power(rgb, np.float32(1.0 / max(gamma, 0.1)), out=rgb)
-    if image.shape[-1] == 4:
-        alpha = image[..., 3:4]
-        rgb = rgb * alpha + _BACKGROUND * (1.0 - alpha)
-    height, width = rgb.shape[:2]
-    data = np.empty((height, width, 4), np.uint8)
-    data[..., 2::-1] = rgb * np.float32(255.0) + np.float32(0.5)  # BGRA in memory
-    data[..., 3] = 255
+    bgr = image[..., 2::-1] * np.float32(2.0 ** exposure)
+    np.fmax(bgr, np.float32(0.0), out=bgr)  # fmax also turns NaN into 0
+    np.fmin(bgr, np.float32(1.0), out=bgr)
+    np.power(bgr, np.float32(1.0 / max(gamma, 0.1)), out=bgr)
+    if image.shape[-1] == 4:  # (c - bg) * alpha + bg
+        bgr -= _BACKGROUND_BGR
+        bgr *= image[..., 3:4]
+        bgr += _BACKGROUND_BGR
+    bgr *= np.float32(255.0)
+    bgr += np.float32(0.5)
+    height, width = bgr.shape[:2]
+    data = np.full((height, width, 4), 255, np.uint8)
+    data[..., :3] = bgr
     return QImage(data.data, width, height, 4 * width, QImage.Format.Format_RGB32).copy()
 
 
@@ -187,6 +190,18 @@ class View(QWidget):
             self.budget -= not fast
             return self.cached(state, full_key, lambda: compute(True)), False
         return self.cached(state, fast_key, lambda: compute(False)), True
+
+    def climb(self, state: ModelState, fast: bool, key: tuple, sizes: list[int],
+              compute) -> tuple[object, bool]:
+        """(result, coarse) for resolutions `sizes` (ascending): while sliding the smallest
+        (or whatever is at hand), then one size up per refinement step, so no single
+        step is long. `compute(size)` makes one."""
+        hit = self.cache.get(id(state))
+        have = hit[0][-1] if hit is not None and hit[0][:-1] == key else None
+        if have in sizes and (fast or have == sizes[-1]):
+            return hit[1], have != sizes[-1]
+        size = sizes[0] if fast or have not in sizes else sizes[sizes.index(have) + 1]
+        return self.cached(state, (*key, size), lambda: compute(size)), size != sizes[-1]
 
     def export_png(self, path: str | Path) -> None:
         self.grab().save(str(path))
@@ -835,7 +850,7 @@ class ObjectView(View):
 
     title = "Lit object / spatially varying"
     name = "object"
-    FAST_SIZE = 112
+    FAST_SIZE = 96
     FILL_LIGHTS = [Light(60.0, 200.0, (0.35, 0.4, 0.55)), Light(75.0, 100.0, (0.5, 0.4, 0.3)),
                    Light(50.0, 300.0, (0.3, 0.3, 0.3))]
 
@@ -899,9 +914,11 @@ class ObjectView(View):
         key = state_key(state, s["theta_i"], s["phi_i"], s["lights"], s["ambient"],
                         s["shape"], s["mode"], s["yaw"], s["pitch"])
         self.cache = {k: v for k, v in self.cache.items() if k == id(state)}
-        image, coarse = self.best(state, fast, (*key, small), (*key, full), lambda use_full: (
+        # The object's full size costs several milliseconds: refine through a middle size.
+        sizes = sorted({small, min(full, 2 * small), full})
+        image, coarse = self.climb(state, fast, key, sizes, lambda size: (
             self.renderer.object(state.model, state.values, lights, ambient, s["shape"],
-                                 s["mode"], s["yaw"], s["pitch"], full if use_full else small)))
+                                 s["mode"], s["yaw"], s["pitch"], size)))
         self.image = image
         if image is not None:
             caption = f"{state.label}: {MODES[s['mode']]}"
