@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import csv
 import importlib
+import os
 import sys
+import traceback
 from pathlib import Path
 
 from lab.models import MODEL_DIR, ModelError
@@ -13,6 +15,7 @@ from lab.models import MODEL_DIR, ModelError
 # Feature packages add their own sub-commands through a `register(subparsers)` function.
 FEATURE_CLIS = ["lab.app.cli", "lab.grading.cli", "lab.web.cli", "lab.measured.cli"]
 VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
+MAX_SIZE = 4096  # pixels per side: a 4096² float image is 256 MiB already
 
 
 class UsageError(Exception):
@@ -118,6 +121,8 @@ def cmd_render(args) -> int:
     else:
         model, values = load(args.model, args.set)
     theta, phi = parse_light(args.light)
+    if not 8 <= args.size <= MAX_SIZE:
+        raise UsageError(f"--size {args.size} is outside 8..{MAX_SIZE} pixels")
     out = check_output(args.output)
     plots.save_render(
         Renderer(), args.view, model, values, theta, phi, out, args.size, args.exposure
@@ -131,7 +136,7 @@ def read_pairs(path: str):
 
     required = ["theta_i", "phi_i", "theta_o", "phi_o"]
     try:
-        handle = open(path, newline="", encoding="utf-8")
+        handle = open(path, newline="", encoding="utf-8-sig")  # tolerate Excel's BOM
     except OSError as err:
         raise UsageError(f"cannot read {path}: {err.strerror}") from None
     with handle:
@@ -295,6 +300,17 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return 130
+    except Exception as err:  # a bug or a broken driver: one line, the trace on request
+        if os.environ.get("BRDF_LAB_DEBUG"):
+            raise
+        where = traceback.extract_tb(err.__traceback__)[-1]
+        place = f"{Path(where.filename).name}:{where.lineno}"
+        print(
+            f"brdf-lab: internal error: {type(err).__name__}: {err} (at {place}); run again "
+            "with BRDF_LAB_DEBUG=1 for the full trace and report it",
+            file=sys.stderr,
+        )
+        return 3
 
 
 if __name__ == "__main__":

@@ -208,6 +208,8 @@ BAD_INPUTS = [
     (["render", "phong", "--light", "120,0", "-o", "{tmp}/x.png"], "outside 0..90"),
     (["render", "phong", "-o", "{tmp}/missing/x.png"], "does not exist"),
     (["render", "phong", "-o", "{tmp}"], "is a directory"),
+    (["render", "phong", "--size", "0", "-o", "{tmp}/x.png"], "--size 0 is outside"),
+    (["render", "phong", "--size", "100000", "-o", "{tmp}/x.png"], "--size 100000 is outside"),
     (["eval", "phong", "--in", "{tmp}/nope.csv"], "cannot read"),
     (["eval", "phong", "--in", "{tmp}/cols.csv"], "cols.csv:1: missing column(s) phi_o"),
     (["eval", "phong", "--in", "{tmp}/text.csv"], "text.csv:3: expected four numbers"),
@@ -237,6 +239,17 @@ def test_bad_input_gets_one_clear_line(tmp_path, args, message):
     assert "Traceback" not in result.stderr
     assert message in result.stderr
     assert result.stderr.startswith("brdf-lab: error:")
+
+
+def test_pairs_file_with_a_byte_order_mark(tmp_path):
+    """Spreadsheets save CSV with a BOM; the header must still be found."""
+    pairs = tmp_path / "excel.csv"
+    pairs.write_bytes("\ufefftheta_i,phi_i,theta_o,phi_o\r\n30,0,30,180\r\n".encode())
+    out = tmp_path / "v.csv"
+    assert (
+        main(["eval", "lambert", "--set", "albedo=0.5", "--in", str(pairs), "--out", str(out)]) == 0
+    )
+    np.testing.assert_allclose(read_values(out), [[0.5 / np.pi] * 3], rtol=1e-6)
 
 
 def test_unwritable_output(tmp_path):
