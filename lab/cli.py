@@ -281,6 +281,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from lab.gl import GLUnavailable
     from lab.glsl import ShaderCompileError
 
     parser = build_parser()
@@ -292,7 +293,7 @@ def main(argv: list[str] | None = None) -> int:
             args = parser.parse_args(["gallery"])
     try:
         return args.func(args)
-    except (UsageError, ModelError) as err:
+    except (UsageError, ModelError, GLUnavailable) as err:
         print(f"brdf-lab: error: {err}", file=sys.stderr)
         return 2
     except ShaderCompileError as err:

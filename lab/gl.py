@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 import moderngl
 
 _offscreen: moderngl.Context | None = None
@@ -21,13 +23,22 @@ def get_context(window: bool = False) -> moderngl.Context:
     if window:
         return moderngl.create_context(require=330)
     if _offscreen is None:
-        try:
-            _offscreen = moderngl.create_context(standalone=True, backend="egl", require=330)
-        except Exception as err:  # glcontext raises plain Exceptions with the EGL error
+        errors = []
+        # EGL needs no display (servers, CI); elsewhere the platform's own standalone
+        # context (WGL on Windows, CGL on macOS, GLX on Linux desktops) is the fallback.
+        backends = ["egl", None] if sys.platform.startswith("linux") else [None]
+        for backend in backends:
+            options = {"backend": backend} if backend else {}
+            try:
+                _offscreen = moderngl.create_context(standalone=True, require=330, **options)
+                break
+            except Exception as err:  # glcontext raises plain Exceptions with the cause
+                errors.append(f"{backend or 'default'}: {err}")
+        else:
             raise GLUnavailable(
-                f"cannot create an offscreen OpenGL 3.3 context through EGL ({err}). "
-                "Install Mesa's EGL/GL drivers: apt-get install libegl1 libgl1-mesa-dri"
-            ) from None
+                f"cannot create an offscreen OpenGL 3.3 context ({'; '.join(errors)}). "
+                "On Debian/Ubuntu install Mesa's drivers: apt-get install libegl1 libgl1-mesa-dri"
+            )
     return _offscreen
 
 
