@@ -16,6 +16,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 VENV = ROOT / ".venv"
+VENV_BIN = VENV / ("Scripts" if os.name == "nt" else "bin")  # Windows names it Scripts
 STAMP = VENV / ".brdf-lab-installed"
 
 # Debian package -> a command that, when found on PATH, makes the package unnecessary.
@@ -84,7 +85,7 @@ def ensure_system_packages(packages: dict[str, str | None]) -> None:
 
 
 def venv_python() -> Path:
-    return VENV / "bin" / "python"
+    return VENV_BIN / ("python.exe" if os.name == "nt" else "python")
 
 
 def ensure_venv(with_tests: bool) -> None:
@@ -115,7 +116,7 @@ def main(argv: list[str]) -> int:
         if not os.environ.get("DISPLAY") and shutil.which("xvfb-run"):
             command = ["xvfb-run", "-a", "-s", "-screen 0 1920x1080x24", *command]
     else:
-        command = [str(VENV / "bin" / "brdf-lab"), *argv]
+        command = [str(VENV_BIN / "brdf-lab"), *argv]
     return subprocess.run(command, cwd=ROOT, env=env).returncode
 
 
