@@ -255,7 +255,7 @@ def test_views_recompute_only_what_changed(qtbot, window, app_renderer, monkeypa
     window.lab.add(load_model("lambert"))
     settle(qtbot, window)
     calls: list[tuple[str, str]] = []
-    for method in ("sphere", "polar", "lobe3d", "slice", "albedo", "object", "probe"):
+    for method in ("sphere", "polar", "lobe_peak", "slice", "albedo", "object", "probe"):
         original = getattr(app_renderer, method)
 
         def counted(model, *args, _method=method, _original=original, **kwargs):
@@ -269,7 +269,7 @@ def test_views_recompute_only_what_changed(qtbot, window, app_renderer, monkeypa
     settle(qtbot, window)
     made = {method for method, _ in calls}
     assert "slice" not in made and "albedo" not in made
-    assert {"sphere", "polar", "lobe3d", "object"} <= made
+    assert {"sphere", "polar", "lobe_peak", "object"} <= made
     assert window.view("slice").draws == draws["slice"]
     assert window.view("albedo").draws == draws["albedo"]
     assert window.view("sphere").draws > draws["sphere"]
@@ -281,7 +281,7 @@ def test_views_recompute_only_what_changed(qtbot, window, app_renderer, monkeypa
     control.slider.setValue(control.slider.value() + 100)
     settle(qtbot, window)
     assert calls and {name for _, name in calls} == {"phong"}
-    assert {"sphere", "polar", "lobe3d", "slice", "albedo"} <= {m for m, _ in calls}
+    assert {"sphere", "polar", "lobe_peak", "slice", "albedo"} <= {m for m, _ in calls}
     # Selecting another model redraws the views that show the selected one.
     calls.clear()
     with qtbot.waitSignal(window.frame_done, timeout=5000):

@@ -16,6 +16,7 @@ import pyqtgraph as pg
 from PyQt6.QtCore import QPointF, QRect, Qt
 from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
 from PyQt6.QtWidgets import (
+    QCheckBox,
     QComboBox,
     QHBoxLayout,
     QPushButton,
@@ -28,7 +29,14 @@ from lab.app.state import LabState, ModelState
 from lab.app.widgets import LiveText, SettingCheck, SettingCombo, SettingSlider
 from lab.glsl import ShaderCompileError
 from lab.models import ModelError
-from lab.render import Light
+from lab.render import (
+    LOBE_FAST_GRID,
+    LOBE_GRID,
+    LOBE_MARK_RGB,
+    Light,
+    LobeCamera,
+    direction,
+)
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 BACKGROUND = (40, 40, 44)
@@ -464,56 +472,37 @@ class PolarView(View):
 
 
 class LobeCanvas(QWidget):
-    """Wireframe lobes projected by hand; drag rotates, the wheel zooms."""
-
-    RING = np.stack([np.cos(np.radians(np.linspace(0, 360, 73))),
-                     np.sin(np.radians(np.linspace(0, 360, 73))), np.zeros(73)], axis=-1)
+    """The lobe image drawn by the models' GLSL, with the marks' names; drag rotates, the
+    wheel zooms."""
 
     def __init__(self, view: LobeView):
         super().__init__()
         self.view = view
-        # Per model: every polyline's points in one (n, 3) array, where each line ends
-        # (pyqtgraph's `connect`), and the colour. One projection per model, not per line.
-        self.lines: list[tuple[np.ndarray, np.ndarray, str]] = []
-        self.marks: list[tuple[np.ndarray, tuple]] = []
+        self.image: QImage | None = None
+        self.labels: list[tuple[QPointF, str, tuple]] = []
         self.last = None
         self.setMinimumSize(160, 160)
         opaque(self)
 
-    def project(self, points: np.ndarray) -> np.ndarray:
-        s = self.view.lab.settings
-        yaw, pitch = s["lobe_yaw"], s["lobe_pitch"]
-        x, y, z = points[..., 0], points[..., 1], points[..., 2]
-        xr = x * math.cos(yaw) - y * math.sin(yaw)
-        yr = x * math.sin(yaw) + y * math.cos(yaw)
-        up = z * math.cos(pitch) - yr * math.sin(pitch)
-        scale = 0.45 * min(self.width(), self.height()) * s["lobe_zoom"]
-        cx, cy = self.width() / 2, self.height() * 0.62
-        return np.stack([cx + scale * xr, cy - scale * up], axis=-1)
-
-    def path(self, points: np.ndarray, connect="all"):
-        xy = self.project(points)
-        return pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect)
-
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
-        painter.fillRect(self.rect(), QColor(*BACKGROUND))
-        painter.setRenderHint(QPainter.RenderHint.Antialiasing, not self.view.fast)
-        painter.setPen(QPen(QColor(110, 110, 110), 1))
-        painter.drawPath(self.path(self.RING))
-        for direction, color in self.marks:
-            ends = self.project(np.array([[0.0, 0.0, 0.0], direction * 1.1]))
-            painter.setPen(QPen(QColor(*color), 1.5, Qt.PenStyle.DashLine))
-            painter.drawLine(QPointF(*ends[0]), QPointF(*ends[1]))
-        for points, connect, color in self.lines:
-            qcolor = QColor(color)
-            qcolor.setAlpha(170)
-            painter.setPen(QPen(qcolor, 1))
-            painter.drawPath(self.path(points, connect))
+        image = self.image
+        if image is None:
+            painter.fillRect(self.rect(), QColor(*BACKGROUND))
+        elif image.width() == self.width() and image.height() == self.height():
+            painter.drawImage(0, 0, image)
+        else:  # a coarse image while sliding, or the widget was just resized
+            painter.drawImage(self.rect(), image)
+        for point, text, color in self.labels:
+            painter.setPen(QColor(*color))
+            painter.drawText(point, text)
         painter.end()
 
     def mousePressEvent(self, event) -> None:
         self.last = event.position()
+
+    def mouseReleaseEvent(self, event) -> None:
+        self.last = None
 
     def mouseMoveEvent(self, event) -> None:
         if self.last is None:
@@ -531,78 +520,92 @@ class LobeCanvas(QWidget):
 
 
 class LobeView(View):
-    """The 3D lobe over the hemisphere (f_r or f_r cos, linear or log as the polar plot)."""
+    """The 3D lobe over the hemisphere, drawn on the GPU by each model's own GLSL (its BRDF
+    in the vertex stage of shaders/views/lobe_mesh.glsl); f_r or f_r cos, linear or log,
+    as the polar plot. All visible models in one picture, each in its colour."""
 
     title = "3D lobe"
     name = "lobe3d"
-    FAST_GRID = (16, 37)
-    GRID = (31, 73)
+    # llvmpipe sets triangles up on one core: the full grid shares a triangle budget among
+    # the models (the mirror direction is a grid vertex, so sharp lobes keep their tips).
+    TRIANGLES = 20000
+    GRIDS = [(61, 121), (49, 97), (41, 81), (33, 65), (25, 49)]
+    MAX_SIDE = 1024
+    MARKS = (("N", "normal"), ("L", "incident"), ("R", "mirror"))
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
-        self.tools.addWidget(LiveText("drag: rotate, wheel: zoom"))
-        self.fast = False
+        s = lab.settings
+        self.tools.addWidget(SettingCheck(s, "polar_log", "log scale"))
+        self.tools.addWidget(SettingCheck(s, "polar_cos", "f_r · cos θo"))
+        self.wire = QCheckBox("wire")
+        self.wire.setToolTip("grid lines only: overlapping lobes show through each other")
+        self.wire.toggled.connect(lambda _: self.window().request())
+        self.tools.addWidget(self.wire)
+        self.tools.addWidget(LiveText("drag: rotate, wheel: zoom"), 1)
         self.canvas = LobeCanvas(self)
         self.layout_.addWidget(self.canvas, 1)
-        self.data: list[tuple[ModelState, tuple]] = []
+        self.data: list[tuple[ModelState, tuple[float, float]]] = []
+        self.image: np.ndarray | None = None  # the last picture, RGBA bytes
+
+    def size_(self) -> tuple[int, int]:
+        return (min(max(self.canvas.width(), 16), self.MAX_SIDE),
+                min(max(self.canvas.height(), 16), self.MAX_SIDE))
+
+    def camera(self) -> LobeCamera:
+        s = self.lab.settings
+        return LobeCamera(s["lobe_yaw"], s["lobe_pitch"], s["lobe_zoom"])
+
+    def full_grid(self, count: int) -> tuple[int, int]:
+        return next((g for g in self.GRIDS if (g[0] - 1) * (g[1] - 1) * 2 * max(count, 1)
+                     <= self.TRIANGLES), self.GRIDS[-1])
 
     def inputs(self) -> tuple:
         s = self.lab.settings
         return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
                 s["phi_i"], s["polar_cos"], s["polar_log"], s["lobe_yaw"], s["lobe_pitch"],
-                s["lobe_zoom"])
+                s["lobe_zoom"], self.wire.isChecked(), self.size_())
 
     def draw(self, fast: bool) -> bool:
-        from lab.render import direction
-
         s = self.lab.settings
-        theta_i, phi_i = s["theta_i"], s["phi_i"]
+        theta_i, phi_i, cos = s["theta_i"], s["phi_i"], s["polar_cos"]
         self.data = []
-        coarse = False
         for state in self.lab.visible_models():
-            key = state_key(state, theta_i, phi_i)
-            lobe, rough = self.best(
-                state, fast, (*key, self.FAST_GRID), (*key, self.GRID),
-                lambda full, st=state: self.renderer.lobe3d(
-                    st.model, st.values, theta_i, phi_i,
-                    *(self.GRID if full else self.FAST_GRID)))
-            coarse = coarse or rough
-            if lobe is not None:
-                self.data.append((state, lobe))
-        self.fast = coarse
-        values = []
-        for _, (theta, _phi, f) in self.data:
-            lum = f.astype(np.float64) @ LUMA
-            if s["polar_cos"]:
-                lum = lum * np.cos(np.radians(theta))[:, None]
-            values.append(lum)
-        peak = max([finite_max(v[theta <= 87.0]) for (_, (theta, _, _)), v
-                    in zip(self.data, values, strict=True)] + [1e-12])
-        self.canvas.lines = []
-        for (state, (theta, phi, _)), lum in zip(self.data, values, strict=True):
-            if s["polar_log"]:
-                floor = peak * 1e-3
-                r = np.log10(np.maximum(lum, floor) / floor) / 3.0
-            else:
-                r = lum / peak
-            tt, pp = np.meshgrid(theta, phi, indexing="ij")
-            points = direction(tt, pp) * np.nan_to_num(np.minimum(r, 1.5))[..., None]
-            rings = points[::2]  # (rings, n_phi, 3): constant theta
-            meridians = points[:, ::3].transpose(1, 0, 2)  # constant phi
-            lines = [rings.reshape(-1, 3), meridians.reshape(-1, 3)]
-            ends = [np.ones(rings.shape[:2], bool), np.ones(meridians.shape[:2], bool)]
-            for end in ends:
-                end[:, -1] = False  # no segment from one line's end to the next's start
-            self.canvas.lines.append((np.concatenate(lines),
-                                      np.concatenate([e.ravel() for e in ends]), state.color))
-        light = direction(theta_i, phi_i)
-        self.canvas.marks = [
-            (np.array([0.0, 0.0, 1.0]), (200, 200, 200)),
-            (light, (255, 210, 0)),
-            (np.array([-light[0], -light[1], light[2]]), (120, 200, 255)),
-        ]
+            # The scale comes from the finest grid, whatever grid draws: no jump on refining.
+            key = state_key(state, theta_i, phi_i, cos)
+            peak = self.cached(state, key, lambda st=state: self.renderer.lobe_peak(
+                st.model, st.values, theta_i, phi_i, cos, LOBE_GRID))
+            if peak is not None:
+                self.data.append((state, peak))
+        full = self.full_grid(len(self.data))
+        grid = LOBE_FAST_GRID if fast else full
+        layers = [(st.model, st.values, QColor(st.color).getRgbF()[:3]) for st, _ in self.data]
+        size, camera = self.size_(), self.camera()
+        try:
+            image = self.renderer.lobe_mesh(
+                layers, theta_i, phi_i, size, camera, cos, s["polar_log"], grid,
+                "wire" if self.wire.isChecked() else "solid",
+                peaks=[p for _, p in self.data],
+                background=(*(np.array(BACKGROUND) / 255.0), 1.0), dtype="u1")
+        except (ShaderCompileError, ModelError) as err:  # lobe_peak compiled them already
+            for state, _ in self.data:
+                state.error = state.error or str(err)
+            image = None
+        self.image = image
+        if image is not None:
+            self.canvas.image = QImage(image.data, size[0], size[1], 4 * size[0],
+                                       QImage.Format.Format_RGBA8888).copy()
+        ends = [direction(0.0, 0.0), direction(theta_i, phi_i),
+                direction(theta_i, phi_i + 180.0)]
+        points = camera.project(1.2 * np.array(ends), size)
+        sx, sy = self.canvas.width() / size[0], self.canvas.height() / size[1]
+        half = self.canvas.fontMetrics().height() / 3
+        self.canvas.labels = [
+            (QPointF(x * sx - half, y * sy + half), letter,
+             tuple(round(255 * c) for c in LOBE_MARK_RGB[name]))
+            for (x, y), (letter, name) in zip(points, self.MARKS, strict=True)]
         self.canvas.update()
-        return coarse
+        return grid != full
 
 
 class SliceCanvas(QWidget):
