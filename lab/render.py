@@ -70,8 +70,11 @@ LOBE_FAST_GRID = (25, 49)  # while a slider moves (llvmpipe sets triangles up on
 LOBE_DECADES = 3.0  # the log scale's range, as the polar plot's
 LOBE_STYLES = ("solid", "wire")
 LOBE_MAX_SEGMENTS = 96  # shaders/views/lobe_mesh_lines.glsl's MAX_SEGMENTS
-LOBE_MARK_RGB = {"normal": (0.78, 0.78, 0.78), "incident": (1.0, 0.82, 0.0),
-                 "mirror": (0.47, 0.78, 1.0)}
+LOBE_MARK_RGB = {
+    "normal": (0.78, 0.78, 0.78),
+    "incident": (1.0, 0.82, 0.0),
+    "mirror": (0.47, 0.78, 1.0),
+}
 
 
 @dataclass(frozen=True)
@@ -92,9 +95,13 @@ class LobeCamera:
         """The camera's uniforms. Clip y is flipped so that GL's first row, read back
         first, is the picture's top row (no flip of the pixels afterwards)."""
         short = float(min(width, height))
-        return {"u_yaw": float(self.yaw), "u_pitch": float(self.pitch),
-                "u_zoom": float(self.zoom), "u_perspective": bool(self.perspective),
-                "u_aspect": (short / width, -short / height)}
+        return {
+            "u_yaw": float(self.yaw),
+            "u_pitch": float(self.pitch),
+            "u_zoom": float(self.zoom),
+            "u_perspective": bool(self.perspective),
+            "u_aspect": (short / width, -short / height),
+        }
 
     def project(self, points, size: tuple[int, int]) -> np.ndarray:
         """Pixel positions (x right, y down from the top row) of world points (n, 3)."""
@@ -130,7 +137,7 @@ _LOBE_COMMON: dict[str, str] = {}
 def _lobe_radius(value: float, peak: float, log: bool) -> float:
     """Where lobe_mesh.glsl puts `value` (the same formula, for the spike)."""
     if log:
-        floor = peak * 10.0 ** -LOBE_DECADES
+        floor = peak * 10.0**-LOBE_DECADES
         r = max(math.log10(max(value, floor) / floor), 0.0) / LOBE_DECADES
     else:
         r = value / peak
@@ -142,14 +149,18 @@ def _lobe_marks(theta_i: float, phi_i: float) -> list:
     angle = np.radians(np.linspace(0.0, 360.0, 73))
     ring = np.stack([np.cos(angle), np.sin(angle), np.zeros_like(angle)], axis=-1)
     grey = (0.55, 0.55, 0.6, 1.0)
-    segments = [(tuple(a), tuple(b), grey, (1.3, 0.0)) for a, b in zip(ring[:-1], ring[1:],
-                                                                       strict=True)]
+    segments = [
+        (tuple(a), tuple(b), grey, (1.3, 0.0)) for a, b in zip(ring[:-1], ring[1:], strict=True)
+    ]
     faint = (0.45, 0.45, 0.5, 0.8)
     segments.append(((-1.0, 0.0, 0.0), (1.0, 0.0, 0.0), faint, (1.0, 0.0)))
     segments.append(((0.0, -1.0, 0.0), (0.0, 1.0, 0.0), faint, (1.0, 0.0)))
     origin = (0.0, 0.0, 0.0)
-    ends = {"normal": direction(0.0, 0.0), "incident": direction(theta_i, phi_i),
-            "mirror": direction(theta_i, phi_i + 180.0)}
+    ends = {
+        "normal": direction(0.0, 0.0),
+        "incident": direction(theta_i, phi_i),
+        "mirror": direction(theta_i, phi_i + 180.0),
+    }
     for name, end in ends.items():
         segments.append((origin, tuple(1.15 * end), (*LOBE_MARK_RGB[name], 1.0), (1.6, 7.0)))
     return segments
@@ -404,8 +415,9 @@ class Renderer:
             "u_light_angles": (math.radians(theta_i), math.radians(phi_i)),
             "u_cos": bool(cos_weighted),
         }
-        fbo = self._run(model, "lobe_mesh_peak", values, (grid[1], grid[0]), uniforms,
-                        _lobe_common())
+        fbo = self._run(
+            model, "lobe_mesh_peak", values, (grid[1], grid[0]), uniforms, _lobe_common()
+        )
         texels = self._read(fbo)
         shown = texels[..., 1]
         shown = shown[np.isfinite(shown)]
@@ -451,8 +463,7 @@ class Renderer:
         width, height = int(size[0]) * k, int(size[1]) * k
         layers = [(as_model(m), v, tuple(float(c) for c in rgb)) for m, v, rgb in layers]
         if peaks is None:
-            peaks = [self.lobe_peak(m, v, theta_i, phi_i, cos_weighted, grid)
-                     for m, v, _ in layers]
+            peaks = [self.lobe_peak(m, v, theta_i, phi_i, cos_weighted, grid) for m, v, _ in layers]
         if peak is None:
             peak = max([p for pair in peaks for p in pair] + [0.0])
         peak = peak if math.isfinite(peak) and peak > 0.0 else 1e-12
@@ -468,15 +479,25 @@ class Renderer:
         ctx = self.ctx
         ctx.enable(moderngl.DEPTH_TEST | moderngl.BLEND)
         ctx.front_face = "cw"  # the camera draws upside down (see LobeCamera.uniforms)
-        ctx.blend_func = (moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA,
-                          moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA)
+        ctx.blend_func = (
+            moderngl.SRC_ALPHA,
+            moderngl.ONE_MINUS_SRC_ALPHA,
+            moderngl.ONE,
+            moderngl.ONE_MINUS_SRC_ALPHA,
+        )
         try:
             ctx.depth_func = "<"
             indices = self._lobe_indices(grid)
             for model, values, rgb in layers:
-                uniforms = {**common, "u_peak": peak, "u_log": bool(log),
-                            "u_decades": LOBE_DECADES, "u_cos": bool(cos_weighted),
-                            "u_color": rgb, "u_wire": style == "wire"}
+                uniforms = {
+                    **common,
+                    "u_peak": peak,
+                    "u_log": bool(log),
+                    "u_decades": LOBE_DECADES,
+                    "u_cos": bool(cos_weighted),
+                    "u_color": rgb,
+                    "u_wire": style == "wire",
+                }
                 program = self._lobe_program(model, values, uniforms)
                 vao = ctx.vertex_array(program, [], index_buffer=indices, index_element_size=4)
                 try:
@@ -553,8 +574,11 @@ class Renderer:
             self._vaos[id(program)] = self.ctx.vertex_array(program, [])  # for forget()
         bind = getattr(model, "bind", None)
         data_uniforms = bind(self.ctx) if bind is not None else {}
-        for name, value in {**glsl.uniform_values(model, resolved), **data_uniforms,
-                            **uniforms}.items():
+        for name, value in {
+            **glsl.uniform_values(model, resolved),
+            **data_uniforms,
+            **uniforms,
+        }.items():
             if name in program:
                 program[name].value = value
         return program
@@ -595,4 +619,3 @@ class Renderer:
         finally:
             vao.release()
             fbo.depth_mask = True
-
