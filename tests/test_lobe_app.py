@@ -12,7 +12,7 @@ pytest.importorskip("pytestqt")
 if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
     pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
 
-from PyQt6.QtCore import QPoint, QPointF, Qt  # noqa: E402
+from PyQt6.QtCore import QPoint, QPointF, Qt, QTimer  # noqa: E402
 from PyQt6.QtGui import QWheelEvent  # noqa: E402
 from PyQt6.QtTest import QTest  # noqa: E402
 from PyQt6.QtWidgets import QApplication, QCheckBox  # noqa: E402
@@ -27,8 +27,21 @@ def app_renderer(ctx):
     return AppRenderer(ctx)
 
 
+def reset_quit() -> None:
+    """Let event loops run again after an earlier test's window quit the application.
+
+    `brdf-lab app` run inside a test (tests/test_app_measured.py) closes its window after
+    exec() returned; Qt then marks the thread as quitting and every later event loop,
+    pytest-qt's waits included, returns at once. A short exec() clears the mark.
+    """
+    app = QApplication.instance()
+    QTimer.singleShot(0, app.quit)
+    app.exec()
+
+
 @pytest.fixture
 def window(qtbot, app_renderer):
+    reset_quit()
     win = MainWindow(app_renderer)
     qtbot.addWidget(win)
     win.resize(1280, 800)
