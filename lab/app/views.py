@@ -542,8 +542,11 @@ class LobeView(View):
         self.wire.setToolTip("grid lines only: overlapping lobes show through each other")
         self.wire.toggled.connect(lambda _: self.window().request())
         self.tools.addWidget(self.wire)
-        self.tools.addWidget(LiveText("drag: rotate, wheel: zoom"), 1)
+        hint = LiveText("drag: rotate, wheel: zoom")
+        self.tools.addWidget(hint, 1)
         self.canvas = LobeCanvas(self)
+        for widget in (hint, self.canvas):
+            widget.setToolTip("drag to rotate the lobe, turn the wheel to zoom")
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, tuple[float, float]]] = []
         self.image: np.ndarray | None = None  # the last picture, RGBA bytes

@@ -25,7 +25,9 @@ void main() {
     vec3 fill = normalize(vec3(0.8, -0.1, 0.6));
     float diffuse = 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);
     float shine = pow(max(dot(n, normalize(key + vec3(0.0, 0.0, 1.0))), 0.0), 24.0);
-    vec3 color = u_color * (0.28 + diffuse) + vec3(0.18 * shine);
+    // A rim light on the silhouette keeps the dark side apart from a dark background.
+    float rim = pow(1.0 - n.z, 3.0);
+    vec3 color = u_color * (0.3 + diffuse + 0.35 * rim) + vec3(0.18 * shine);
     if (inside) color *= 0.6;
     float line = max(grid_line(v_angles.x, 10.0, 1.2), grid_line(v_angles.y, 30.0, 1.2));
     if (u_wire) {
