@@ -60,3 +60,22 @@ def gl_clean(ctx):
 def output_dir() -> Path:
     OUTPUT.mkdir(exist_ok=True)
     return OUTPUT
+
+
+@pytest.fixture(autouse=True)
+def qt_event_loop_stays_usable(request):
+    """After a Qt test, run one short event loop.
+
+    A test that runs `brdf-lab app` closes its last window, which posts a quit for the
+    *next* event loop; left pending, it would end every later wait at once. One exec()
+    that quits by itself consumes it (and any deferred deletions).
+    """
+    yield
+    if "qtbot" in request.fixturenames:
+        from PyQt6.QtCore import QTimer
+        from PyQt6.QtWidgets import QApplication
+
+        app = QApplication.instance()
+        if app is not None:
+            QTimer.singleShot(0, app.quit)
+            app.exec()
