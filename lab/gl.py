@@ -42,6 +42,11 @@ def get_context(window: bool = False) -> moderngl.Context:
     return _offscreen
 
 
+def has_offscreen_context() -> bool:
+    """Whether this process has made its offscreen context (a forked child would share it)."""
+    return _offscreen is not None
+
+
 def describe(ctx: moderngl.Context) -> str:
     """Renderer and version, e.g. 'llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5'."""
     major, minor = divmod(ctx.version_code // 10, 10)

@@ -274,10 +274,18 @@ class Renderer:
             "u_multiply_cos": multiply_cos,
         }
         preamble = f"const int LIGHT_COUNT = {len(lights)};"
-        fbo = self._run(model, "sphere", values, (size, size), uniforms, preamble)
         if not readback:
+            self._run(model, "sphere", values, (size, size), uniforms, preamble)
             self.ctx.finish()
             return None
+        return self.image(model, "sphere", values, size, uniforms, preamble)
+
+    def image(
+        self, model: Model, view: str, values, size: int, uniforms: dict, preamble: str = ""
+    ) -> np.ndarray:
+        """A square image view drawn in one full-screen pass (the sphere, the grader's and the
+        app's own templates): (size, size, 4) float32, row 0 at the top."""
+        fbo = self._run(as_model(model), view, values, (size, size), uniforms, preamble)
         return self._read(fbo)[::-1].copy()
 
     def _probe(self, model: Model | str, values, view: str, inputs: list[np.ndarray]) -> np.ndarray:

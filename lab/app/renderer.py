@@ -102,5 +102,4 @@ class AppRenderer(Renderer):
             }
         )
         preamble = f"const int LIGHT_COUNT = {len(lights)};"
-        fbo = self._run(model, "object", resolved, (size, size), uniforms, preamble)
-        return self._read(fbo)[::-1].copy()
+        return self.image(model, "object", resolved, size, uniforms, preamble)

@@ -153,10 +153,7 @@ def render(renderer: Renderer, model: Model, check: Check) -> np.ndarray:
     }
     preamble = f"const int LIGHT_COUNT = {len(lights)};"
     # The sphere view's own plumbing, so grading templates (shaders/views/grade_*.glsl) share it.
-    fbo = renderer._run(
-        model, check.view, check.params, (check.size, check.size), uniforms, preamble
-    )
-    return renderer._read(fbo)[::-1].copy()
+    return renderer.image(model, check.view, check.params, check.size, uniforms, preamble)
 
 
 def expected_value(raw: np.ndarray, check: Check) -> np.ndarray:

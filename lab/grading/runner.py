@@ -90,7 +90,7 @@ def start_method() -> str:
     """
     from lab import gl
 
-    return "fork" if gl._offscreen is None else "forkserver"
+    return "forkserver" if gl.has_offscreen_context() else "fork"
 
 
 class _Worker:
