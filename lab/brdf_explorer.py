@@ -248,7 +248,8 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     return mix(f, vec3(0.0), isnan(f));
 }
 const bool IS_DELTA = false;
-vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }"""
+vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }
+vec3 AMBIENT_REFLECTANCE() { return vec3(1.0); }"""
 
 
 def _defines(names, prefix: str) -> tuple[str, str]:

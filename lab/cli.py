@@ -45,6 +45,30 @@ def parse_light(text: str) -> tuple[float, float]:
     return theta, phi
 
 
+def parse_rgb(text: str, what: str) -> tuple[float, float, float]:
+    try:
+        numbers = [float(x) for x in text.split(",")]
+    except ValueError:
+        numbers = []
+    if len(numbers) == 1:
+        numbers *= 3
+    if len(numbers) != 3 or min(numbers) < 0:
+        raise UsageError(f"{what} {text!r} is malformed: write R,G,B (or one grey value), >= 0")
+    return tuple(numbers)
+
+
+def parse_scene_light(text: str):
+    """`THETA,PHI` or `THETA,PHI,R,G,B`: a directional light for the sphere view."""
+    from lab.render import Light
+
+    parts = text.split(",")
+    if len(parts) not in (2, 3, 5):
+        raise UsageError(f"--light {text!r} is malformed: write THETA,PHI or THETA,PHI,R,G,B")
+    theta, phi = parse_light(",".join(parts[:2]))
+    rgb = parse_rgb(",".join(parts[2:]), "--light colour") if len(parts) > 2 else (1.0, 1.0, 1.0)
+    return Light(theta, phi, rgb)
+
+
 def check_output(path: str) -> Path:
     """A path we can write, or a UsageError saying why not."""
     out = Path(path)
@@ -114,18 +138,31 @@ def cmd_models(args) -> int:
 
 def cmd_render(args) -> int:
     from lab import plots
-    from lab.render import Renderer
+    from lab.render import MAX_LIGHTS, Renderer
 
     if args.model == "measured" or args.table:
         model, values = load_measured(args.model, args.table, args.set)
     else:
         model, values = load(args.model, args.set)
-    theta, phi = parse_light(args.light)
+    lights = [parse_scene_light(text) for text in args.light or ["45,0"]]
+    if len(lights) > MAX_LIGHTS:
+        raise UsageError(f"at most {MAX_LIGHTS} --light options")
+    ambient = parse_rgb(args.ambient, "--ambient")
     if not 8 <= args.size <= MAX_SIZE:
         raise UsageError(f"--size {args.size} is outside 8..{MAX_SIZE} pixels")
     out = check_output(args.output)
     plots.save_render(
-        Renderer(), args.view, model, values, theta, phi, out, args.size, args.exposure
+        Renderer(),
+        args.view,
+        model,
+        values,
+        lights[0].theta,
+        lights[0].phi,
+        out,
+        args.size,
+        args.exposure,
+        lights=lights,
+        ambient=ambient,
     )
     print(f"wrote {out}")
     return 0
@@ -246,7 +283,19 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("render", help="render a view of a model to PNG")
     p.add_argument("model", help="model name (see 'brdf-lab models') or a .glsl file")
     p.add_argument("--set", action="append", metavar="NAME=VALUE", help="parameter value")
-    p.add_argument("--light", default="45,0", metavar="THETA,PHI", help="light direction (deg)")
+    p.add_argument(
+        "--light",
+        action="append",
+        metavar="THETA,PHI[,R,G,B]",
+        help="light direction (deg) and colour; repeat for several lights (sphere view; the "
+        "plots use the first); default 45,0",
+    )
+    p.add_argument(
+        "--ambient",
+        default="0",
+        metavar="R,G,B",
+        help="ambient light L_a (sphere view; the Phong illumination model reflects ka L_a)",
+    )
     p.add_argument("--view", choices=VIEWS, default="sphere")
     p.add_argument("--size", type=int, default=512, help="image size in pixels")
     p.add_argument("--exposure", type=float, default=0.0, help="exposure in stops (sphere)")

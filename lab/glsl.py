@@ -172,6 +172,7 @@ def assemble_fragment(
         _add_include(source, include, seen, model)
     source.add(model.code, model_label)
     source.add(f"const bool IS_DELTA = {'true' if model.delta else 'false'};", "<host>")
+    source.add(f"vec3 AMBIENT_REFLECTANCE() {{ return {model.ambient or 'vec3(1.0)'}; }}", "<host>")
     if not model.delta:
         source.add(
             "vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }",

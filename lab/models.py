@@ -140,6 +140,7 @@ class Model:
     includes: list[str] = field(default_factory=list)
     params: dict[str, Param] = field(default_factory=dict)
     delta: bool = False
+    ambient: str = ""  # the colour parameter that reflects ambient light (@ambient)
 
     def defaults(self) -> dict[str, Value]:
         return {p.name: p.default for p in self.params.values()}
@@ -242,6 +243,7 @@ def parse_model(code: str, path: Path | str, expected_name: str | None = None) -
     path = Path(path)
     model = Model(name=expected_name or path.stem, path=path, code=code)
     named = False
+    ambient_line = 0
     for number, raw in enumerate(code.splitlines(), start=1):
         stripped = raw.strip()
         if not stripped:
@@ -267,6 +269,8 @@ def parse_model(code: str, path: Path | str, expected_name: str | None = None) -
             model.includes.append(rest)
         elif keyword == "delta":
             model.delta = True
+        elif keyword == "ambient":
+            model.ambient, ambient_line = rest, number
         elif keyword == "param":
             param = parse_param(rest, path, number)
             if param.name in model.params:
@@ -275,9 +279,18 @@ def parse_model(code: str, path: Path | str, expected_name: str | None = None) -
         else:
             raise ModelError(
                 f"unknown header keyword @{keyword}: use @model, @title, @formula, @source, "
-                "@include, @delta or @param",
+                "@include, @delta, @ambient or @param",
                 path,
                 number,
+            )
+    if ambient_line:
+        param = model.params.get(model.ambient)
+        if param is None or param.kind != "color":
+            raise ModelError(
+                f"@ambient {model.ambient}: name a color parameter of this model "
+                "(declared with '@param NAME color R G B')",
+                path,
+                ambient_line,
             )
     if named and expected_name and model.name != expected_name:
         raise ModelError(f"@model {model.name} does not match the file name {path.name}", path, 1)

@@ -87,10 +87,16 @@ def save_render(
     out: str | Path,
     size: int = 512,
     exposure: float = 0.0,
+    lights=None,
+    ambient=(0.0, 0.0, 0.0),
 ) -> None:
-    """Any view as a PNG: the sphere as an image, the others as labelled plots."""
+    """Any view as a PNG: the sphere as an image (with `lights` and `ambient` when given),
+    the others as labelled plots for the light (theta, phi)."""
     if view == "sphere":
-        save_image(renderer.sphere(model, values, (theta, phi), size=size), out, exposure)
+        image = renderer.sphere(
+            model, values, (theta, phi), size=size, lights=lights, ambient=ambient
+        )
+        save_image(image, out, exposure)
     else:
         save_view(renderer, view, model, values, theta, phi, out, size=size)
 
@@ -189,8 +195,15 @@ def save_lobe3d(
     background = tuple(c / 255.0 for c in LOBE_BACKGROUND)
     peak = renderer.lobe_peak(model, values, theta, phi, cos_weighted)
     image = renderer.lobe_mesh(
-        [(model, values, LOBE_COLOR)], theta, phi, (width, height), camera,
-        cos_weighted=cos_weighted, log=log, peaks=[peak], background=(*background, 1.0),
+        [(model, values, LOBE_COLOR)],
+        theta,
+        phi,
+        (width, height),
+        camera,
+        cos_weighted=cos_weighted,
+        log=log,
+        peaks=[peak],
+        background=(*background, 1.0),
         supersample=2,
     )
     dpi = 100
@@ -209,8 +222,14 @@ def save_lobe3d(
     what = f"{model.name}: {quantity} for light from θi = {theta:g}°, φi = {phi:g}°{scale}"
     if model.delta:
         what += f"; the spike: reflectance {peak[1]:.3g}"
-    fig.text(0.5, 1.0 - 0.5 * caption / (height + caption), what, color="0.85", fontsize=10,
-             ha="center", va="center")
+    fig.text(
+        0.5,
+        1.0 - 0.5 * caption / (height + caption),
+        what,
+        color="0.85",
+        fontsize=10,
+        ha="center",
+        va="center",
+    )
     fig.savefig(out, dpi=dpi, facecolor=fig.get_facecolor())
     plt.close(fig)
-

@@ -54,13 +54,13 @@ DEFAULTS: dict[str, dict[str, Any]] = {
     "ggx": {"kd": _grey(0.1), "ks": _grey(1.0), "alpha": 0.25, "f0": _grey(0.04)},
     "oren_nayar": {"albedo": _grey(0.8), "sigma": 0.35},
     "lommel_seeliger": {"albedo": _grey(0.8)},
-    "phong_illumination": {"kd": _grey(0.3), "ks": _grey(0.5), "ke": 50.0},
+    "phong_illumination": {"ka": _grey(0.1), "kd": _grey(0.3), "ks": _grey(0.5), "ke": 50.0},
 }
 ENUMS: dict[str, tuple[str, ...]] = {
     "distribution": ("beckmann", "blinn", "gaussian"),
     "fresnel": ("schlick", "dielectric", "none"),
 }
-COLORS = {"albedo", "rho_s", "kd", "ks", "f0"}
+COLORS = {"albedo", "rho_s", "ka", "kd", "ks", "f0"}
 MODELS: tuple[str, ...] = tuple(DEFAULTS)
 DELTA_MODELS: tuple[str, ...] = ("mirror",)
 
@@ -240,7 +240,9 @@ def _evaluate(model: str, p: dict[str, Any], a: _Angles) -> np.ndarray:
     if model in ("phong", "phong_illumination"):
         lobe = np.maximum(0.0, a.cos_rv) ** p["ke"]
         if model == "phong_illumination":
-            lobe = lobe / a.cos_ti
+            # The slide's kd (N.L) + ks (R.V)^ke per light, divided by the cosine a renderer
+            # applies: its kd is no albedo (no 1/pi) and its specular loses reciprocity.
+            return ones * p["kd"] + p["ks"] * (lobe / a.cos_ti)[:, None]
         return diffuse + p["ks"] * lobe[:, None]
     if model == "blinn_phong":
         return diffuse + p["ks"] * (np.maximum(0.0, a.cos_th) ** p["ke"])[:, None]

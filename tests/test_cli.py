@@ -262,3 +262,42 @@ def test_unwritable_output(tmp_path):
     if result.returncode == 0:  # root ignores file permissions; use a path that cannot exist
         result = run_cli("render", "lambert", "-o", "/proc/version/out.png")
     assert result.returncode == 2 and "cannot write" in result.stderr
+
+
+def test_render_several_lights_and_ambient(tmp_path):
+    """`--light` repeats (with colours) and `--ambient` adds ka L_a: the slide's sum, by hand."""
+    from lab.plots import to_srgb8
+
+    out = tmp_path / "scene.png"
+    args = [
+        "render",
+        "phong_illumination",
+        "--set",
+        "ka=0.2",
+        "--set",
+        "kd=0.1",
+        "--set",
+        "ks=0.3",
+        "--set",
+        "ke=8",
+        "--light",
+        "30,0,1,0.5,0.25",
+        "--light",
+        "50,180,0.2,0.4,0.8",
+        "--ambient",
+        "0.5",
+        "--size",
+        "65",
+        "-o",
+        str(out),
+    ]
+    assert main(args) == 0
+    centre = np.asarray(Image.open(out).convert("RGB"))[32, 32].astype(int)
+    N = V = np.array([0.0, 0.0, 1.0])  # the centre pixel looks along the normal
+    expected = 0.2 * 0.5 * np.ones(3)
+    for theta, phi, rgb in ((30, 0, (1, 0.5, 0.25)), (50, 180, (0.2, 0.4, 0.8))):
+        t, p = np.radians(theta), np.radians(phi)
+        L = np.array([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)])
+        R = 2 * (N @ L) * N - L
+        expected += np.array(rgb) * (0.1 * (N @ L) + 0.3 * max(R @ V, 0.0) ** 8)
+    assert np.abs(centre - to_srgb8(expected).astype(int)).max() <= 1

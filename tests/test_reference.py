@@ -114,8 +114,9 @@ def test_phong_illumination_divides_the_lobe_by_cos_theta_i_and_is_not_reciproca
     lobe = math.cos(math.radians(5)) ** 50
     forward = f1("phong_illumination", params, (20, 0), (25, 180))
     backward = f1("phong_illumination", params, (25, 180), (20, 0))
-    np.testing.assert_allclose(forward, 0.3 / PI + 0.5 * lobe / math.cos(math.radians(20)))
-    np.testing.assert_allclose(backward, 0.3 / PI + 0.5 * lobe / math.cos(math.radians(25)))
+    # The slide's kd multiplies N.L directly: as a BRDF it is kd itself, without 1/pi.
+    np.testing.assert_allclose(forward, 0.3 + 0.5 * lobe / math.cos(math.radians(20)))
+    np.testing.assert_allclose(backward, 0.3 + 0.5 * lobe / math.cos(math.radians(25)))
     assert abs(forward[0] - backward[0]) > 0.01
 
 

@@ -48,15 +48,37 @@ def test_sphere_background_and_cosine(renderer):
 
 
 def test_several_lights_and_ambient_add_up(renderer):
-    """The Phong illumination model: ambient + a sum over lights (the render is linear)."""
+    """The Phong illumination model: ka L_a + a sum over lights (the render is linear)."""
     a, b = Light(30.0, 0.0, (1.0, 0.5, 0.2)), Light(50.0, 200.0, (0.2, 0.4, 1.0))
-    ambient = (0.05, 0.06, 0.07)
-    values = {"ke": 20.0}
+    ambient = np.array([0.5, 0.6, 0.7])
+    values = {"ke": 20.0, "ka": (0.2, 0.1, 0.4)}
     both = renderer.sphere("phong_illumination", values, lights=[a, b], ambient=ambient, size=SIZE)
     one = renderer.sphere("phong_illumination", values, lights=[a], size=SIZE)
     two = renderer.sphere("phong_illumination", values, lights=[b], size=SIZE)
     inside = both[..., 3] > 0
-    np.testing.assert_allclose(both[inside, :3], (one + two)[inside, :3] + ambient, atol=1e-5)
+    expected = (one + two)[inside, :3] + ambient * values["ka"]
+    np.testing.assert_allclose(both[inside, :3], expected, atol=1e-5)
+
+
+def test_slide_form_of_the_phong_illumination_model(renderer):
+    """Each pixel is ka L_a + sum_l L_l (kd (N.L_l) + ks (R_l.V)^ke), computed here by hand."""
+    lights = [Light(35.0, 10.0, (1.0, 0.8, 0.6)), Light(60.0, 220.0, (0.3, 0.5, 1.0))]
+    ka, kd, ks, ke = np.array([0.1, 0.2, 0.3]), np.array([0.4, 0.3, 0.2]), 0.6, 12.0
+    La = np.array([0.3, 0.3, 0.3])
+    values = {"ka": tuple(ka), "kd": tuple(kd), "ks": (ks,) * 3, "ke": ke}
+    image = renderer.sphere("phong_illumination", values, lights=lights, ambient=La, size=SIZE)
+    V = np.array([0.0, 0.0, 1.0])
+    for row, col in ((SIZE // 2, SIZE // 2), (70, 150), (180, 60)):
+        N = pixel_to_normal(row, col)
+        expected = ka * La
+        for light in lights:
+            L = direction(light.theta, light.phi)
+            if N @ L > 0:
+                R = 2 * (N @ L) * N - L
+                expected = expected + np.array(light.rgb) * (
+                    kd * (N @ L) + ks * max(R @ V, 0.0) ** ke
+                )
+        np.testing.assert_allclose(image[row, col, :3], expected, rtol=1e-3)
 
 
 def test_phong_illumination_specular_has_no_cosine(renderer):

@@ -115,7 +115,7 @@ void main() {
             color += u_light_rgb[i] * BRDF(L, V, N, X, Y) * cosine;
         }
     }
-    color += (u_mode == 0 || u_mode == 2) ? u_ambient * diffuse : u_ambient;
+    color += u_ambient * ((u_mode == 0 || u_mode == 2) ? diffuse : AMBIENT_REFLECTANCE());
     if (IS_DELTA && (u_mode == 1 || u_mode == 3)) {
         vec3 Rv = reflect(-V, N);
         color += DELTA_REFLECTANCE(Rv, N, X, Y) * sky(Rv);

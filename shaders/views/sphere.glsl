@@ -1,5 +1,6 @@
 // View: a unit sphere seen by an orthographic camera looking down -z (x right, y up).
-// LIGHT_COUNT (a constant from the host) directional lights; u_ambient is the Phong illumination model's ka * L_a.
+// LIGHT_COUNT (a constant from the host) directional lights, and ambient light u_ambient,
+// reflected by AMBIENT_REFLECTANCE() (the Phong illumination model's ka; 1 for other models).
 // A delta (mirror) model reflects the procedural environment of environment().
 uniform vec2 u_resolution;
 uniform vec3 u_light_dir[8];
@@ -33,7 +34,7 @@ void main() {
     vec3 X = vec3(N.z, 0.0, -N.x);
     X = dot(X, X) > 1e-12 ? normalize(X) : vec3(1.0, 0.0, 0.0);
     vec3 Y = cross(N, X);
-    vec3 color = u_ambient;
+    vec3 color = u_ambient * AMBIENT_REFLECTANCE();
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         vec3 L = u_light_dir[i];
         float cosine = u_multiply_cos ? max(dot(N, L), 0.0) : 1.0;

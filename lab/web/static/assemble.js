@@ -137,6 +137,8 @@ export function assembleFragment(model, view, files, { target = "300es", preambl
   for (const include of model.includes) addInclude(source, include, seen, model, files);
   source.add(model.code, model.path);
   source.add(`const bool IS_DELTA = ${model.delta ? "true" : "false"};`, "<host>");
+  source.add(
+    `vec3 AMBIENT_REFLECTANCE() { return ${model.ambient || "vec3(1.0)"}; }`, "<host>");
   if (!model.delta) {
     source.add(
       "vec3 DELTA_REFLECTANCE(vec3 L, vec3 N, vec3 X, vec3 Y) { return vec3(0.0); }", "<host>");

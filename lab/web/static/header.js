@@ -161,9 +161,10 @@ export function parseModel(code, path, expectedName = null) {
   const stem = path.split("/").pop().replace(/\.[^.]*$/, "");
   const model = {
     name: expectedName || stem, path, code, title: "", formula: [], source: [],
-    includes: [], params: [], delta: false,
+    includes: [], params: [], delta: false, ambient: "",
   };
   let named = false;
+  let ambientLine = 0;
   const lines = splitLines(code);
   for (let index = 0; index < lines.length; index++) {
     const number = index + 1;
@@ -185,7 +186,10 @@ export function parseModel(code, path, expectedName = null) {
     else if (keyword === "source") model.source.push(rest);
     else if (keyword === "include") model.includes.push(rest);
     else if (keyword === "delta") model.delta = true;
-    else if (keyword === "param") {
+    else if (keyword === "ambient") {
+      model.ambient = rest;
+      ambientLine = number;
+    } else if (keyword === "param") {
       const param = parseParam(rest, path, number);
       if (model.params.some((p) => p.name === param.name)) {
         throw new ModelError(`parameter ${param.name} is declared twice`, path, number);
@@ -194,7 +198,15 @@ export function parseModel(code, path, expectedName = null) {
     } else {
       throw new ModelError(
         `unknown header keyword @${keyword}: use @model, @title, @formula, @source, ` +
-          "@include, @delta or @param", path, number);
+          "@include, @delta, @ambient or @param", path, number);
+    }
+  }
+  if (ambientLine) {
+    const param = model.params.find((p) => p.name === model.ambient);
+    if (!param || param.kind !== "color") {
+      throw new ModelError(
+        `@ambient ${model.ambient}: name a color parameter of this model ` +
+          "(declared with '@param NAME color R G B')", path, ambientLine);
     }
   }
   if (named && expectedName && model.name !== expectedName) {
