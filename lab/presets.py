@@ -42,12 +42,23 @@ MODEL_FILES = (".glsl", ".brdf")
 
 # Light and view settings a preset may hold, with their defaults (and so their types).
 SETTINGS: dict[str, Value] = {
-    "theta_i": 30.0, "phi_i": 0.0,
-    "exposure": 0.0, "gamma": 2.2, "multiply_cos": True,
-    "polar_log": False, "polar_cos": False,
+    "theta_i": 30.0,
+    "phi_i": 0.0,
+    "exposure": 0.0,
+    "gamma": 2.2,
+    "multiply_cos": True,
+    "polar_log": False,
+    "polar_cos": False,
     "phi_d": 90.0,
-    "shape": 0, "mode": 1, "lights": 3, "ambient": 0.03, "yaw": 0.6, "pitch": 0.5,
-    "lobe_yaw": -0.6, "lobe_pitch": 0.35, "lobe_zoom": 1.0,
+    "shape": 0,
+    "mode": 1,
+    "lights": 3,
+    "ambient": 0.03,
+    "yaw": 0.6,
+    "pitch": 0.5,
+    "lobe_yaw": -0.6,
+    "lobe_pitch": 0.35,
+    "lobe_zoom": 1.0,
     "sh_order": 8,
 }
 
@@ -97,9 +108,15 @@ def plain_values(values: dict[str, Value]) -> dict:
     return {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
 
 
-def model_entry(model: Model, values: dict[str, Value], label: str = "", color: str = "",
-                visible: bool = True, from_file: bool = False,
-                base: Path | None = None) -> dict:
+def model_entry(
+    model: Model,
+    values: dict[str, Value],
+    label: str = "",
+    color: str = "",
+    visible: bool = True,
+    from_file: bool = False,
+    base: Path | None = None,
+) -> dict:
     """One [[model]] table for `model` (a measured model also gets its `table` path)."""
     entry: dict = {}
     table = table_path(model)
@@ -119,8 +136,9 @@ def model_entry(model: Model, values: dict[str, Value], label: str = "", color: 
     return entry
 
 
-def entry_model(entry: object, number: int, base: Path | None,
-                where: str) -> tuple[Model, dict[str, Value], bool]:
+def entry_model(
+    entry: object, number: int, base: Path | None, where: str
+) -> tuple[Model, dict[str, Value], bool]:
     """The model, checked values and whether it is a file, of one [[model]] table."""
     if not isinstance(entry, dict) or "model" not in entry:
         raise ModelError(f"[[model]] number {number} has no 'model = NAME' line", where)
@@ -131,22 +149,28 @@ def entry_model(entry: object, number: int, base: Path | None,
 
     if source == MEASURED:
         if "table" not in entry:
-            raise ModelError(f"[[model]] number {number} is measured but has no "
-                             "'table = \"FILE.binary\"' line", where)
+            raise ModelError(
+                f"[[model]] number {number} is measured but has no 'table = \"FILE.binary\"' line",
+                where,
+            )
         from lab.measured.model import measured_model
 
         model: Model = measured_model(local(str(entry["table"])))
     elif "table" in entry:
-        raise ModelError(f"[[model]] number {number} has a table but model {source!r}: "
-                         f"only model = \"{MEASURED}\" reads a table", where)
+        raise ModelError(
+            f"[[model]] number {number} has a table but model {source!r}: "
+            f'only model = "{MEASURED}" reads a table',
+            where,
+        )
     else:
         if source.endswith(MODEL_FILES):
             source = local(source)
         model = load_any(source)
     raw = entry.get("values", {})
     if not isinstance(raw, dict):
-        raise ModelError(f"[[model]] number {number}: 'values' must be a [model.values] table",
-                         where)
+        raise ModelError(
+            f"[[model]] number {number}: 'values' must be a [model.values] table", where
+        )
     values = {k: tuple(v) if isinstance(v, list) else v for k, v in raw.items()}
     model.resolve(values)  # check before anyone changes state
     return model, values, source.endswith(MODEL_FILES)
@@ -157,8 +181,9 @@ def check_settings(settings: object, where: str) -> dict[str, Value]:
         raise ModelError("'settings' must be a [settings] table", where)
     unknown = [k for k in settings if k not in SETTINGS]
     if unknown:
-        raise ModelError(f"unknown setting(s) {', '.join(unknown)}; known: "
-                         f"{', '.join(SETTINGS)}", where)
+        raise ModelError(
+            f"unknown setting(s) {', '.join(unknown)}; known: {', '.join(SETTINGS)}", where
+        )
     return dict(settings)
 
 
@@ -180,8 +205,9 @@ def dump_toml(data: dict) -> str:
     """Our preset dictionaries as TOML: top-level keys, tables and arrays of tables."""
     lines = []
     for key, value in data.items():
-        if not isinstance(value, (dict, list)) or (isinstance(value, list) and value
-                                                   and not isinstance(value[0], dict)):
+        if not isinstance(value, (dict, list)) or (
+            isinstance(value, list) and value and not isinstance(value[0], dict)
+        ):
             lines.append(f"{key} = {_toml_value(value)}")
     for key, value in data.items():
         if isinstance(value, dict):
@@ -189,8 +215,9 @@ def dump_toml(data: dict) -> str:
         elif isinstance(value, list) and value and isinstance(value[0], dict):
             for table in value:
                 lines += ["", f"[[{key}]]"]
-                lines += [f"{k} = {_toml_value(v)}" for k, v in table.items()
-                          if not isinstance(v, dict)]
+                lines += [
+                    f"{k} = {_toml_value(v)}" for k, v in table.items() if not isinstance(v, dict)
+                ]
                 for k, v in table.items():
                     if isinstance(v, dict):
                         lines.append(f"[{key}.{k}]")

@@ -220,7 +220,10 @@ def test_no_display_renders_the_gallery(tmp_path):
     out = tmp_path / "gallery"
     result = subprocess.run(
         [sys.executable, "-m", "lab.cli", "app", "--gallery-dir", str(out)],
-        env=env, capture_output=True, text=True, timeout=120,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
         cwd=Path(__file__).parent.parent,
     )
     assert result.returncode == 0, result.stderr
@@ -345,7 +348,7 @@ def test_tonemap_matches_the_formula():
     qimage = tonemap(image, -0.5, 2.2)
     bits = qimage.constBits().asstring(qimage.sizeInBytes())
     got = np.frombuffer(bits, np.uint8).reshape(5, -1, 4)[:, :7, 2::-1]  # BGRA -> RGB
-    rgb = np.clip(np.nan_to_num(image[..., :3].astype(np.float64), nan=0.0) * 2 ** -0.5, 0, 1)
+    rgb = np.clip(np.nan_to_num(image[..., :3].astype(np.float64), nan=0.0) * 2**-0.5, 0, 1)
     rgb = rgb ** (1 / 2.2)
     alpha = image[..., 3:4]
     expected = (rgb * alpha + np.array(BACKGROUND) / 255 * (1 - alpha)) * 255

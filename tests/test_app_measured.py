@@ -44,8 +44,22 @@ def table_file(renderer, tmp_path_factory):
 def fit_preset(table_file, tmp_path_factory):
     """`brdf-lab fit` of GGX to the table: the preset it writes (in another folder)."""
     outdir = tmp_path_factory.mktemp("fit")
-    assert main(["fit", str(table_file), "--model", "ggx", "--samples", "3000",
-                 "--outdir", str(outdir), "--no-figure"]) == 0
+    assert (
+        main(
+            [
+                "fit",
+                str(table_file),
+                "--model",
+                "ggx",
+                "--samples",
+                "3000",
+                "--outdir",
+                str(outdir),
+                "--no-figure",
+            ]
+        )
+        == 0
+    )
     return outdir / "ggx-ggx-fit.toml"
 
 
@@ -72,8 +86,9 @@ def spheres(win: MainWindow) -> dict[str, np.ndarray]:
     return {state.label: image for state, image in win.view("sphere").floats}
 
 
-def test_fit_preset_opens_with_measured_and_fitted_overlaid(qtbot, window, fit_preset,
-                                                            table_file, output_dir):
+def test_fit_preset_opens_with_measured_and_fitted_overlaid(
+    qtbot, window, fit_preset, table_file, output_dir
+):
     data = read_preset(fit_preset)
     measured, fitted = data["model"]
     assert measured["model"] == "measured" and measured["table"] == "../measured0/ggx.binary"
@@ -113,9 +128,13 @@ def test_open_binary_matches_the_renderer(qtbot, window, table_file, renderer, o
     settle(qtbot, window)
     image = spheres(window)["ggx"]
     s = window.lab.settings
-    expected = renderer.sphere(measured_model(table_file), {"interpolation": "nearest"},
-                               (40.0, s["phi_i"]), size=image.shape[0],
-                               multiply_cos=s["multiply_cos"])
+    expected = renderer.sphere(
+        measured_model(table_file),
+        {"interpolation": "nearest"},
+        (40.0, s["phi_i"]),
+        size=image.shape[0],
+        multiply_cos=s["multiply_cos"],
+    )
     assert np.allclose(image, expected, atol=1e-6)
     for name in ("polar", "lobe3d", "slice", "albedo", "sh"):
         assert window.view(name).data, name
@@ -125,8 +144,7 @@ def test_open_binary_matches_the_renderer(qtbot, window, table_file, renderer, o
     control.text.setText("2")
     control.text.editingFinished.emit()
     settle(qtbot, window)
-    assert np.allclose(spheres(window)["ggx"][..., :3], 2 * expected[..., :3], rtol=1e-5,
-                       atol=1e-6)
+    assert np.allclose(spheres(window)["ggx"][..., :3], 2 * expected[..., :3], rtol=1e-5, atol=1e-6)
     # A preset saved with the table refers to it and restores the same pixels.
     preset = window.save_preset(table_file.parent / "with_table.toml")
     text = preset.read_text()
@@ -134,8 +152,7 @@ def test_open_binary_matches_the_renderer(qtbot, window, table_file, renderer, o
     window.lab.clear()
     window.load_preset(preset)
     settle(qtbot, window)
-    assert np.allclose(spheres(window)["ggx"][..., :3], 2 * expected[..., :3], rtol=1e-5,
-                       atol=1e-6)
+    assert np.allclose(spheres(window)["ggx"][..., :3], 2 * expected[..., :3], rtol=1e-5, atol=1e-6)
 
 
 def test_bad_binary_shows_an_error_and_the_app_runs_on(qtbot, window, table_file, tmp_path):
@@ -209,8 +226,11 @@ def test_app_command_opens_a_binary(qtbot, table_file):
 
     def inspect() -> None:
         try:
-            win = next(w for w in QApplication.topLevelWidgets()
-                       if isinstance(w, MainWindow) and w.isVisible())
+            win = next(
+                w
+                for w in QApplication.topLevelWidgets()
+                if isinstance(w, MainWindow) and w.isVisible()
+            )
             found["models"] = [(m.model.name, m.label) for m in win.lab.models]
             win.close()
         finally:
@@ -226,8 +246,11 @@ def test_app_command_opens_a_fit_preset(qtbot, fit_preset, capsys):
 
     def inspect() -> None:
         try:
-            win = next(w for w in QApplication.topLevelWidgets()
-                       if isinstance(w, MainWindow) and w.isVisible())
+            win = next(
+                w
+                for w in QApplication.topLevelWidgets()
+                if isinstance(w, MainWindow) and w.isVisible()
+            )
             found["models"] = [m.label for m in win.lab.models]
             found["title"] = win.windowTitle()
             win.close()
@@ -249,23 +272,64 @@ def test_render_measured_command(table_file, tmp_path, capsys):
     from PIL import Image
 
     out = tmp_path / "m.png"
-    assert main(["render", "measured", "--table", str(table_file), "--set",
-                 "interpolation=nearest", "--size", "128", "-o", str(out)]) == 0
+    assert (
+        main(
+            [
+                "render",
+                "measured",
+                "--table",
+                str(table_file),
+                "--set",
+                "interpolation=nearest",
+                "--size",
+                "128",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
     pixels = np.asarray(Image.open(out).convert("RGB"), dtype=np.float64)
     assert pixels.shape == (128, 128, 3) and pixels.max() > 200 and pixels.std() > 20
     # The same picture as the renderer gives (up to 8-bit rounding).
-    assert main(["render-measured", str(table_file), "--interpolation", "nearest",
-                 "--size", "128", "-o", str(tmp_path / "old.png")]) == 0
+    assert (
+        main(
+            [
+                "render-measured",
+                str(table_file),
+                "--interpolation",
+                "nearest",
+                "--size",
+                "128",
+                "-o",
+                str(tmp_path / "old.png"),
+            ]
+        )
+        == 0
+    )
     old = np.asarray(Image.open(tmp_path / "old.png").convert("RGB"), dtype=np.float64)
     assert np.abs(old - pixels).max() <= 1
     capsys.readouterr()
     for argv, words in (
         (["render", "measured", "-o", str(out)], "--table"),
         (["render", "ggx", "--table", str(table_file), "-o", str(out)], "measured"),
-        (["render", "measured", "--table", str(tmp_path / "no.binary"), "-o", str(out)],
-         "no such file"),
-        (["render", "measured", "--table", str(table_file), "--set", "interpolation=cubic",
-          "-o", str(out)], "cubic"),
+        (
+            ["render", "measured", "--table", str(tmp_path / "no.binary"), "-o", str(out)],
+            "no such file",
+        ),
+        (
+            [
+                "render",
+                "measured",
+                "--table",
+                str(table_file),
+                "--set",
+                "interpolation=cubic",
+                "-o",
+                str(out),
+            ],
+            "cubic",
+        ),
     ):
         assert main(argv) == 2
         err = capsys.readouterr().err.strip()

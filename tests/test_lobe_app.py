@@ -94,18 +94,26 @@ def test_lobe_view_draws_every_model_and_follows_the_mouse(qtbot, window, output
     QTest.mouseRelease(canvas, Qt.MouseButton.LeftButton, pos=centre + QPoint(40, 20))
     settle(qtbot, window)
     assert s["lobe_yaw"] == pytest.approx(yaw + 0.4) and s["lobe_pitch"] == pytest.approx(
-        pitch + 0.2)
+        pitch + 0.2
+    )
     assert not np.array_equal(view.image, image)
 
     # The wheel zooms in: the lobes cover more of the picture.
     before = lit(view.image).sum()
     for _ in range(3):
-        event = QWheelEvent(QPointF(centre), QPointF(canvas.mapToGlobal(centre)), QPoint(),
-                            QPoint(0, 120), Qt.MouseButton.NoButton,
-                            Qt.KeyboardModifier.NoModifier, Qt.ScrollPhase.NoScrollPhase, False)
+        event = QWheelEvent(
+            QPointF(centre),
+            QPointF(canvas.mapToGlobal(centre)),
+            QPoint(),
+            QPoint(0, 120),
+            Qt.MouseButton.NoButton,
+            Qt.KeyboardModifier.NoModifier,
+            Qt.ScrollPhase.NoScrollPhase,
+            False,
+        )
         QApplication.sendEvent(canvas, event)
     settle(qtbot, window)
-    assert s["lobe_zoom"] == pytest.approx(1.1 ** 3)
+    assert s["lobe_zoom"] == pytest.approx(1.1**3)
     assert lit(view.image).sum() > 1.15 * before
 
     # Wire: only the grid lines are drawn, far fewer pixels.
@@ -129,8 +137,10 @@ def test_lobe_view_shares_log_and_cosine_with_the_polar_plot(qtbot, window, outp
     view.export_png(output_dir / "app_view_lobe3d_log.png")
     # f_r cos theta_o: the same setting in both views; the scale is f_r cos's peak.
     check_box(view, "f_r · cos θo").setChecked(True)
-    assert window.lab.settings["polar_cos"] and check_box(window.view("polar"),
-                                                          "f_r · cos θo").isChecked()
+    assert (
+        window.lab.settings["polar_cos"]
+        and check_box(window.view("polar"), "f_r · cos θo").isChecked()
+    )
     settle(qtbot, window)
     theta_i = window.lab.settings["theta_i"]
     expected = window.renderer.lobe_peak(load_model("phong"), {"ke": 200.0}, theta_i, 0.0, True)
@@ -143,6 +153,6 @@ def test_delta_model_spike_in_the_app(qtbot, window):
     window.lab.add(load_model("mirror"))
     settle(qtbot, window)
     view = window.view("lobe3d")
-    (state, (peak, spike)), = view.data
+    ((state, (peak, spike)),) = view.data
     assert peak == 0.0 and spike > 0.5
     assert lit(view.image).sum() > 50  # the spike, in the model's colour

@@ -35,12 +35,12 @@ def save(image: np.ndarray, path) -> None:
 
 
 @pytest.mark.parametrize("perspective", [True, False])
-def test_phong_lobe_reaches_farthest_in_the_mirror_direction(renderer, gl_clean, output_dir,
-                                                             perspective):
+def test_phong_lobe_reaches_farthest_in_the_mirror_direction(
+    renderer, gl_clean, output_dir, perspective
+):
     camera = LobeCamera(yaw=-0.6, pitch=0.35, perspective=perspective)
     phong = load_model("phong")
-    image = renderer.lobe_mesh([(phong, {"ke": 50.0}, RED)], 45.0, 0.0, SIZE, camera,
-                               marks=False)
+    image = renderer.lobe_mesh([(phong, {"ke": 50.0}, RED)], 45.0, 0.0, SIZE, camera, marks=False)
     assert image.shape == (SIZE[1], SIZE[0], 4) and image.dtype == np.float32
     # The peak f_r is in the mirror direction and is drawn at radius 1.
     tip = camera.project(direction(45.0, 180.0), SIZE)[0]
@@ -53,8 +53,10 @@ def test_phong_lobe_reaches_farthest_in_the_mirror_direction(renderer, gl_clean,
 
 def test_higher_phong_exponent_draws_a_smaller_lobe(renderer, gl_clean):
     phong = load_model("phong")
-    areas = [mask(renderer.lobe_mesh([(phong, {"ke": ke}, RED)], 30.0, 0.0, SIZE,
-                                     marks=False)).sum() for ke in (5.0, 50.0, 500.0)]
+    areas = [
+        mask(renderer.lobe_mesh([(phong, {"ke": ke}, RED)], 30.0, 0.0, SIZE, marks=False)).sum()
+        for ke in (5.0, 50.0, 500.0)
+    ]
     assert areas[0] > areas[1] > areas[2] > 100
 
 
@@ -63,8 +65,9 @@ def test_two_models_overlay_in_their_colours(renderer, gl_clean, output_dir):
     layers = [(phong, {"ke": 20.0}, RED), (lambert, {}, BLUE)]
     both = renderer.lobe_mesh(layers, 40.0, 30.0, SIZE, marks=False)
     peak = max(p for m, v, _ in layers for p in renderer.lobe_peak(m, v, 40.0, 30.0))
-    alone = [renderer.lobe_mesh([layer], 40.0, 30.0, SIZE, marks=False, peak=peak)
-             for layer in layers]
+    alone = [
+        renderer.lobe_mesh([layer], 40.0, 30.0, SIZE, marks=False, peak=peak) for layer in layers
+    ]
     on = mask(both)
     red = on & (both[..., 0] > both[..., 2])
     blue = on & (both[..., 2] > both[..., 0])
@@ -75,12 +78,24 @@ def test_two_models_overlay_in_their_colours(renderer, gl_clean, output_dir):
     # Each lobe is where it is drawn alone, in its own colour.
     assert (red & mask(alone[0])).sum() > 0.9 * red.sum()
     assert (blue & mask(alone[1])).sum() > 0.9 * blue.sum()
-    save(renderer.lobe_mesh(layers, 40.0, 30.0, SIZE, supersample=2,
-                            background=(0.16, 0.16, 0.17, 1.0)),
-         output_dir / "lobe_mesh_overlay.png")
-    save(renderer.lobe_mesh(layers, 40.0, 30.0, SIZE, style="wire", supersample=2,
-                            background=(0.16, 0.16, 0.17, 1.0)),
-         output_dir / "lobe_mesh_overlay_wire.png")
+    save(
+        renderer.lobe_mesh(
+            layers, 40.0, 30.0, SIZE, supersample=2, background=(0.16, 0.16, 0.17, 1.0)
+        ),
+        output_dir / "lobe_mesh_overlay.png",
+    )
+    save(
+        renderer.lobe_mesh(
+            layers,
+            40.0,
+            30.0,
+            SIZE,
+            style="wire",
+            supersample=2,
+            background=(0.16, 0.16, 0.17, 1.0),
+        ),
+        output_dir / "lobe_mesh_overlay_wire.png",
+    )
 
 
 def test_delta_model_draws_its_spike(renderer, gl_clean, output_dir):
@@ -89,24 +104,41 @@ def test_delta_model_draws_its_spike(renderer, gl_clean, output_dir):
     peak, spike = renderer.lobe_peak(mirror, {"rho_s": (0.5, 0.5, 0.5)}, 30.0, 90.0)
     assert peak == 0.0 and spike == pytest.approx(0.5, rel=1e-4)
     # Scaled to 1: the spike is a line from the origin to half way along the mirror direction.
-    image = renderer.lobe_mesh([(mirror, {"rho_s": (0.5, 0.5, 0.5)}, BLUE)], 30.0, 90.0, SIZE,
-                               camera, marks=False, peak=1.0)
+    image = renderer.lobe_mesh(
+        [(mirror, {"rho_s": (0.5, 0.5, 0.5)}, BLUE)],
+        30.0,
+        90.0,
+        SIZE,
+        camera,
+        marks=False,
+        peak=1.0,
+    )
     end = camera.project(0.5 * direction(30.0, 270.0), SIZE)[0]
     assert np.linalg.norm(farthest(image, camera) - end) < 4.0
     start = camera.project(ORIGIN, SIZE)[0]
     for t in (0.2, 0.5, 0.8):  # lit along the way, in the model's colour
         x, y = (start + t * (end - start)).astype(int)
-        patch = image[y - 2:y + 3, x - 2:x + 3]
+        patch = image[y - 2 : y + 3, x - 2 : x + 3]
         assert patch[..., 3].max() > 0.9 and patch[..., 2].max() > 0.5
     # With a diffuse model beside it the spike sets the scale: it reaches radius 1.
     lambert = load_model("lambert")
-    image = renderer.lobe_mesh([(mirror, {}, BLUE), (lambert, {}, RED)], 30.0, 90.0, SIZE,
-                               camera, marks=False)
+    image = renderer.lobe_mesh(
+        [(mirror, {}, BLUE), (lambert, {}, RED)], 30.0, 90.0, SIZE, camera, marks=False
+    )
     tip = camera.project(direction(30.0, 270.0), SIZE)[0]
     assert np.linalg.norm(farthest(image, camera) - tip) < 4.0
-    save(renderer.lobe_mesh([(mirror, {}, BLUE), (lambert, {}, RED)], 30.0, 90.0, SIZE,
-                            camera, background=(0.16, 0.16, 0.17, 1.0), supersample=2),
-         output_dir / "lobe_mesh_mirror.png")
+    save(
+        renderer.lobe_mesh(
+            [(mirror, {}, BLUE), (lambert, {}, RED)],
+            30.0,
+            90.0,
+            SIZE,
+            camera,
+            background=(0.16, 0.16, 0.17, 1.0),
+            supersample=2,
+        ),
+        output_dir / "lobe_mesh_mirror.png",
+    )
 
 
 def test_log_scale_and_cosine_follow_the_formula(renderer, gl_clean):
@@ -118,8 +150,16 @@ def test_log_scale_and_cosine_follow_the_formula(renderer, gl_clean):
     flat = {}
     for cos in (False, True):
         for log in (False, True):
-            image = renderer.lobe_mesh([(lambert, {}, RED)], 20.0, 0.0, SIZE, camera,
-                                       cos_weighted=cos, log=log, marks=False)
+            image = renderer.lobe_mesh(
+                [(lambert, {}, RED)],
+                20.0,
+                0.0,
+                SIZE,
+                camera,
+                cos_weighted=cos,
+                log=log,
+                marks=False,
+            )
             rows, cols = np.nonzero(mask(image))
             flat[cos, log] = (rows.min(), cols.max() - cols.min())
     top = camera.project([0.0, 0.0, 1.0], SIZE)[0][1]
@@ -147,8 +187,10 @@ def test_compile_error_in_the_vertex_stage_names_the_model_line(renderer, tmp_pa
     model = parse_model(path.read_text(), path)
     with pytest.raises(ShaderCompileError) as caught:
         renderer.lobe_mesh([(model, {}, RED)], 30.0, 0.0, (64, 64))
-    assert any(e.file.endswith("bad_lobe.glsl") and e.line in (broken, broken + 1)
-               for e in caught.value.errors), caught.value.errors
+    assert any(
+        e.file.endswith("bad_lobe.glsl") and e.line in (broken, broken + 1)
+        for e in caught.value.errors
+    ), caught.value.errors
 
 
 def test_bad_style_is_a_clear_error(renderer):

@@ -68,8 +68,9 @@ def test_two_lobes_and_preset_format(samples, tmp_path):
     assert "SUM" in preset["notes"] and "lobe 2 of 2" in entries[2]["label"]
     model = load_model("cook_torrance")
     for entry in entries[1:]:
-        model.resolve({k: tuple(v) if isinstance(v, list) else v
-                       for k, v in entry["values"].items()})  # inside the header's ranges
+        model.resolve(
+            {k: tuple(v) if isinstance(v, list) else v for k, v in entry["values"].items()}
+        )  # inside the header's ranges
     assert entries[2]["values"]["kd"] == [0.0, 0.0, 0.0]
     assert set(preset["views"]) >= {"sphere", "polar", "sh"}
 
@@ -77,14 +78,34 @@ def test_two_lobes_and_preset_format(samples, tmp_path):
 def test_fit_command_writes_preset_and_figure(renderer, tmp_path, capsys):
     table = tabulate("cook_torrance", {"m": 0.2}, dims=(30, 30, 60), renderer=renderer)
     path = write_merl(table, tmp_path / "ct.binary")
-    assert main(["fit", str(path), "--model", "cook_torrance", "--model", "ward",
-                 "--samples", "3000", "--outdir", str(tmp_path)]) == 0
+    assert (
+        main(
+            [
+                "fit",
+                str(path),
+                "--model",
+                "cook_torrance",
+                "--model",
+                "ward",
+                "--samples",
+                "3000",
+                "--outdir",
+                str(tmp_path),
+            ]
+        )
+        == 0
+    )
     out = capsys.readouterr().out
     assert "m=0.2" in out and "error" in out and out.count("wrote preset") == 2
     preset = read_preset(tmp_path / "ct-cook_torrance-fit.toml")
-    assert preset["model"][0] == {"model": "measured", "table": "ct.binary", "label": "measured",
-                                  "color": fitting.MEASURED_COLOR, "visible": True,
-                                  "values": {"interpolation": "linear", "gain": 1.0}}
+    assert preset["model"][0] == {
+        "model": "measured",
+        "table": "ct.binary",
+        "label": "measured",
+        "color": fitting.MEASURED_COLOR,
+        "visible": True,
+        "values": {"interpolation": "linear", "gain": 1.0},
+    }
     assert preset["model"][1]["values"]["m"] == pytest.approx(0.2, rel=0.01)
     assert (tmp_path / "ct-ward-fit.png").stat().st_size > 10000
     # The comparison table ranks the true model first.

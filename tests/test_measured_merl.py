@@ -69,8 +69,10 @@ def test_half_diff_angles_of_simple_configurations():
     # Swapping L and V moves phi_d by 180 deg: the same bin.
     rng = np.random.default_rng(1)
     L, V = merl.directions(rng.uniform(0, 1.5, 50), rng.uniform(0, 1.5, 50), rng.uniform(-3, 3, 50))
-    assert np.array_equal(np.stack(merl.bin_index(*merl.half_diff(L, V))),
-                          np.stack(merl.bin_index(*merl.half_diff(V, L))))
+    assert np.array_equal(
+        np.stack(merl.bin_index(*merl.half_diff(L, V))),
+        np.stack(merl.bin_index(*merl.half_diff(V, L))),
+    )
 
 
 def test_directions_invert_half_diff():
@@ -105,9 +107,15 @@ def test_bad_files_give_clear_errors(tmp_path):
     nan = bytearray(good)
     nan[12 + 8 * 7 : 12 + 8 * 8] = struct.pack("<d", float("nan"))
     cases["nan"] = bytes(nan)
-    words = {"empty": "too short", "truncated": "truncated", "extra": "extra bytes",
-             "negative_dims": "dimensions", "big_endian": "dimensions",
-             "wrong_dims": "dimensions (6, 5, 9)", "nan": "NaN"}
+    words = {
+        "empty": "too short",
+        "truncated": "truncated",
+        "extra": "extra bytes",
+        "negative_dims": "dimensions",
+        "big_endian": "dimensions",
+        "wrong_dims": "dimensions (6, 5, 9)",
+        "nan": "NaN",
+    }
     for name, data in cases.items():
         path = tmp_path / f"{name}.binary"
         path.write_bytes(data)
@@ -124,6 +132,8 @@ def test_cli_reports_bad_table_in_one_line(tmp_path, capsys):
     assert main(["fit", str(path), "--no-figure"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "truncated" in err and "short.binary" in err
-    assert main(["render-measured", str(tmp_path / "missing.binary"), "-o",
-                 str(tmp_path / "x.png")]) == 2
+    assert (
+        main(["render-measured", str(tmp_path / "missing.binary"), "-o", str(tmp_path / "x.png")])
+        == 2
+    )
     assert "no such file" in capsys.readouterr().err

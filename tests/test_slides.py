@@ -16,9 +16,13 @@ pytestmark = pytest.mark.skipif(
 )
 
 # Slides (by their heading) saved as screenshots besides every live demo.
-SCREENSHOT_SLIDES = {"BRDFs": "title", "The BRDF: definition": "definition",
-                     "Lambert's sun and moon": "sun_moon", "The Phong exponent": "phong_figures",
-                     "Cook-Torrance: the terms": "cook_torrance_terms"}
+SCREENSHOT_SLIDES = {
+    "BRDFs": "title",
+    "The BRDF: definition": "definition",
+    "Lambert's sun and moon": "sun_moon",
+    "The Phong exponent": "phong_figures",
+    "Cook-Torrance: the terms": "cook_torrance_terms",
+}
 
 # In a demo's frame: where every visible control and canvas is, and how far the page scrolls.
 LAYOUT = """() => {
@@ -81,8 +85,13 @@ def test_deck_builds(deck):
     assert html.count('class="katex') >= 30  # equations typeset at build time
     text = re.sub(r"<[^>]+>", " ", html)
     assert "$$" not in text and "\\frac" not in re.sub(r"<annotation.*?</annotation>", "", html)
-    for needed in ("lib/reveal/reveal.js", "lib/katex/katex.min.css", "lab/index.html",
-                   "lab/manifest.json", "lab/shaders/brdfs/phong.glsl"):
+    for needed in (
+        "lib/reveal/reveal.js",
+        "lib/katex/katex.min.css",
+        "lab/index.html",
+        "lab/manifest.json",
+        "lab/shaders/brdfs/phong.glsl",
+    ):
         assert (deck / needed).is_file(), needed
     assert not (deck / "node_modules").exists()
 
@@ -95,7 +104,8 @@ def test_every_slide_renders(deck, deck_page, output_dir):
     assert deck_page.evaluate("Reveal.getTotalSlides()") == info["count"]
     headings = deck_page.evaluate(
         "[...document.querySelectorAll('.reveal .slides > section')]"
-        ".map(s => (s.querySelector('h1, h2') || {}).textContent || '')")
+        ".map(s => (s.querySelector('h1, h2') || {}).textContent || '')"
+    )
     shots = {headings.index(h): name for h, name in SCREENSHOT_SLIDES.items()}
     for index in range(info["count"]):
         deck_page.evaluate(f"Reveal.slide({index})")
@@ -104,8 +114,9 @@ def test_every_slide_renders(deck, deck_page, output_dir):
             frames = deck_page.query_selector_all("section.present iframe.demo")
             assert len(frames) == 1, f"slide {index}: no demo iframe"
             frame = frames[0].content_frame()
-            frame.wait_for_function("window.brdfLab && brdfLab.state.firstRenderMs !== null",
-                                    timeout=30_000)
+            frame.wait_for_function(
+                "window.brdfLab && brdfLab.state.firstRenderMs !== null", timeout=30_000
+            )
             assert frame.evaluate("brdfLab.notes()") == [], f"bad preset {demo_slides[index]}"
             panels = frame.evaluate("brdfLab.state.panels.length")
             for i in range(panels):
@@ -134,17 +145,23 @@ def check_demo_fits(deck_page, iframe, frame, index: int) -> None:
     inside the frame: nothing needs scrolling during the lecture."""
     slide = deck_page.evaluate(
         "(() => { const r = document.querySelector('.reveal .slides').getBoundingClientRect();"
-        " return { left: r.left, top: r.top, right: r.right, bottom: r.bottom }; })()")
+        " return { left: r.left, top: r.top, right: r.right, bottom: r.bottom }; })()"
+    )
     box = iframe.bounding_box()
     assert box["y"] + box["height"] <= slide["bottom"] + 1, f"slide {index}: the demo runs off"
     assert box["x"] >= slide["left"] - 1 and box["x"] + box["width"] <= slide["right"] + 1
     layout = frame.evaluate(LAYOUT)
     assert layout["scroll"][0] <= 0 and layout["scroll"][1] <= 0, (
-        f"slide {index}: the demo scrolls by {layout['scroll']} px")
+        f"slide {index}: the demo scrolls by {layout['scroll']} px"
+    )
     assert layout["sliders"] >= 3  # the light's two and at least one parameter or exposure
     for b in layout["boxes"]:
-        inside = (b["left"] >= -0.5 and b["top"] >= -0.5 and b["right"] <= layout["width"] + 0.5
-                  and b["bottom"] <= layout["height"] + 0.5)
+        inside = (
+            b["left"] >= -0.5
+            and b["top"] >= -0.5
+            and b["right"] <= layout["width"] + 0.5
+            and b["bottom"] <= layout["height"] + 0.5
+        )
         assert inside, f"slide {index}: {b['what']} is outside the demo's frame: {b}"
 
 

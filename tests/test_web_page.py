@@ -111,7 +111,7 @@ def test_slider_follows_the_formula(browser, output_dir):
         r2 = x**2 + y**2
         c = np.sqrt(np.clip(1 - r2, 0, None))
         renders = []
-        for position, expected_ke in ((200, 1000 ** 0.2), (700, 1000 ** 0.7)):
+        for position, expected_ke in ((200, 1000**0.2), (700, 1000**0.7)):
             ke = page.js("p => brdfLab.moveSlider(0, 'ke', p)", position)
             assert ke == pytest.approx(expected_ke, rel=1e-3)  # a log slider
             assert page.js("brdfLab.values(0).ke") == ke
@@ -130,8 +130,11 @@ def test_slider_follows_the_formula(browser, output_dir):
 
 
 def test_presets_and_side_by_side(browser, output_dir):
-    page = Page(browser, "model=phong&ke=120&model=ward&alpha_x=0.3&model=cook_torrance"
-                         "&distribution=blinn&light=60,45&size=200")
+    page = Page(
+        browser,
+        "model=phong&ke=120&model=ward&alpha_x=0.3&model=cook_torrance"
+        "&distribution=blinn&light=60,45&size=200",
+    )
     try:
         assert page.js("brdfLab.state.panels.length") == 3
         assert page.js("brdfLab.values(0).ke") == 120
@@ -186,8 +189,10 @@ def test_errors_name_the_model_file_and_line(lab_page):
         parse_model(header, "bad.glsl")
     assert error == str(python_error.value)  # the same words as the desktop lab
     assert lab_page.errors == []
-    lab_page.js(f"() => {{ while (brdfLab.state.panels.length > {count}) "
-                "brdfLab.state.panels.pop().root.remove(); }")
+    lab_page.js(
+        f"() => {{ while (brdfLab.state.panels.length > {count}) "
+        "brdfLab.state.panels.pop().root.remove(); }"
+    )
 
 
 def test_live_server_serves_page_manifest_and_shaders():
@@ -235,8 +240,13 @@ def test_two_lights_add_up(lab_page, renderer):
     np.testing.assert_allclose(both[on], (only_a + only_b)[on] - [0, 0, 0, 1], rtol=1e-5, atol=1e-6)
     np.testing.assert_allclose(lit[on][:, :3], both[on][:, :3] + ambient, rtol=1e-5, atol=1e-6)
     assert (lit[~on] == 0).all()  # the background gets no ambient
-    desktop = renderer.sphere(load_model("phong"), {}, size=SIZE, ambient=tuple(ambient),
-                              lights=[Light(d["theta"], d["phi"], tuple(d["rgb"])) for d in (a, b)])
+    desktop = renderer.sphere(
+        load_model("phong"),
+        {},
+        size=SIZE,
+        ambient=tuple(ambient),
+        lights=[Light(d["theta"], d["phi"], tuple(d["rgb"])) for d in (a, b)],
+    )
     close = np.abs(lit - desktop)[..., :3] <= ABS_TOL + REL_TOL * np.abs(desktop[..., :3])
     assert close[on].all()
     # The page keeps the lights in its address, so a preset can hold them.

@@ -22,8 +22,13 @@ TARGET_P95_MS = 16.0
 TARGET_LAUNCH_S = 2.0
 # Events that mean drawing is still under way: a paint, a pending repaint of a window,
 # a layout to redo or a queued call (QGraphicsScene announces its changes that way).
-BUSY_EVENTS = {QEvent.Type.Paint, QEvent.Type.UpdateRequest, QEvent.Type.UpdateLater,
-               QEvent.Type.LayoutRequest, QEvent.Type.MetaCall}
+BUSY_EVENTS = {
+    QEvent.Type.Paint,
+    QEvent.Type.UpdateRequest,
+    QEvent.Type.UpdateLater,
+    QEvent.Type.LayoutRequest,
+    QEvent.Type.MetaCall,
+}
 
 
 def process_age() -> float | None:
@@ -115,8 +120,10 @@ def run_bench(app, launched: float) -> int:
         window.theta_slider.slider.setValue(20 + (i * 7) % 140)
 
     results = []
-    for label, move in (("parameter slider", move_param),
-                        ("light slider (all models)", move_light)):
+    for label, move in (
+        ("parameter slider", move_param),
+        ("light slider (all models)", move_light),
+    ):
         window.frame_times.clear()
         window.view_times.clear()
         times, paints = measure(app, window, move, CHANGES, watch)
@@ -136,27 +143,40 @@ def run_bench(app, launched: float) -> int:
     from lab.gl import describe
 
     print(f"brdf-lab app benchmark: {describe(window.renderer.ctx)}")
-    print(f"window {window.width()}x{window.height()}, models: {', '.join(BENCH_MODELS)}, "
-          f"views: {', '.join(v.name for v in window.views if v.is_shown())}")
+    print(
+        f"window {window.width()}x{window.height()}, models: {', '.join(BENCH_MODELS)}, "
+        f"views: {', '.join(v.name for v in window.views if v.is_shown())}"
+    )
     print("frame = slider change -> every view redrawn, painted, and sent to the X server")
     for label, times, paints, work, views in results:
-        print(f"{label}: {len(times)} changes, frame p50 {np.percentile(times, 50):.1f} ms, "
-              f"p95 {np.percentile(times, 95):.1f} ms, max {times.max():.1f} ms "
-              f"({paints:.1f} paint events a frame)")
-        print(f"  of which the views' redraw work (no Qt painting): p50 "
-              f"{np.percentile(work, 50):.1f} ms, p95 {np.percentile(work, 95):.1f} ms; by view "
-              "(p50/p95): " + ", ".join(f"{name} {np.percentile(t, 50):.1f}/"
-                                        f"{np.percentile(t, 95):.1f}" for name, t in views.items()))
+        print(
+            f"{label}: {len(times)} changes, frame p50 {np.percentile(times, 50):.1f} ms, "
+            f"p95 {np.percentile(times, 95):.1f} ms, max {times.max():.1f} ms "
+            f"({paints:.1f} paint events a frame)"
+        )
+        print(
+            f"  of which the views' redraw work (no Qt painting): p50 "
+            f"{np.percentile(work, 50):.1f} ms, p95 {np.percentile(work, 95):.1f} ms; by view "
+            "(p50/p95): "
+            + ", ".join(
+                f"{name} {np.percentile(t, 50):.1f}/{np.percentile(t, 95):.1f}"
+                for name, t in views.items()
+            )
+        )
     if refine_steps:
         slowest, name = max(refine_steps)
         median = np.median([t for t, _ in refine_steps])
-        print(f"refinement: {len(refine_steps)} steps, median {median:.1f} ms, slowest "
-              f"{slowest:.1f} ms ({name}); they run {REFINE_NOTE}")
+        print(
+            f"refinement: {len(refine_steps)} steps, median {median:.1f} ms, slowest "
+            f"{slowest:.1f} ms ({name}); they run {REFINE_NOTE}"
+        )
     print(f"launch to first frame: {first_frame:.2f} s")
     worst = max(np.percentile(times, 95) for _, times, _, _, _ in results)
     verdict = "met" if worst <= TARGET_P95_MS and first_frame <= TARGET_LAUNCH_S else "NOT met"
-    print(f"targets (p95 <= {TARGET_P95_MS:.0f} ms, launch <= {TARGET_LAUNCH_S:.0f} s): "
-          f"{verdict}; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
+    print(
+        f"targets (p95 <= {TARGET_P95_MS:.0f} ms, launch <= {TARGET_LAUNCH_S:.0f} s): "
+        f"{verdict}; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores"
+    )
     window.close()
     return 0
 

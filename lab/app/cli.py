@@ -23,14 +23,19 @@ def has_display() -> bool:
 
 def register(subparsers) -> None:
     p = subparsers.add_parser("app", help="open the desktop lab (the default command)")
-    p.add_argument("models", nargs="*",
-                   help="models, .glsl/.brdf files, MERL .binary tables or a preset .toml")
+    p.add_argument(
+        "models", nargs="*", help="models, .glsl/.brdf files, MERL .binary tables or a preset .toml"
+    )
     p.add_argument("--preset", metavar="FILE.toml", help="start from a saved or shipped preset")
     p.add_argument("--presenter", action="store_true", help="large fonts and full screen")
-    p.add_argument("--bench", action="store_true",
-                   help="print frame times over 200 slider changes and exit")
-    p.add_argument("--gallery-dir", default="out/gallery",
-                   help="where to render the gallery when no display is available")
+    p.add_argument(
+        "--bench", action="store_true", help="print frame times over 200 slider changes and exit"
+    )
+    p.add_argument(
+        "--gallery-dir",
+        default="out/gallery",
+        help="where to render the gallery when no display is available",
+    )
     p.set_defaults(func=cmd_app)
 
     p = subparsers.add_parser("watch", help="a small window that reloads a shader on save")
@@ -62,13 +67,17 @@ def resolve_preset(text: str) -> Path:
 
 
 def gallery_offscreen(outdir: str) -> int:
-    print("brdf-lab: no display is available (DISPLAY is not set); rendering the gallery "
-          "offscreen instead.")
+    print(
+        "brdf-lab: no display is available (DISPLAY is not set); rendering the gallery "
+        "offscreen instead."
+    )
     from lab import figures
 
     index = figures.gallery(Path(outdir))
-    print(f"brdf-lab: the gallery of every model is in {Path(outdir).resolve()} "
-          f"(open {index.resolve()})")
+    print(
+        f"brdf-lab: the gallery of every model is in {Path(outdir).resolve()} "
+        f"(open {index.resolve()})"
+    )
     return 0
 
 

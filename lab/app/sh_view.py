@@ -56,16 +56,24 @@ class SettingSpin(QSpinBox):
         self.setValue(int(settings[name]))
         self.valueChanged.connect(lambda v: settings.set(name, v))
         settings.changed.connect(
-            lambda n: n == name and self.value() != settings[name]
-            and self.setValue(int(settings[name]))
+            lambda n: (
+                n == name and self.value() != settings[name] and self.setValue(int(settings[name]))
+            )
         )
 
 
 class SHData:
     """One model's lobe at one light: coefficients, errors by order, the plane's curves."""
 
-    def __init__(self, coefficients: np.ndarray, errors: np.ndarray, theta_o: np.ndarray,
-                 plane: np.ndarray, plane_basis: np.ndarray, peak: float):
+    def __init__(
+        self,
+        coefficients: np.ndarray,
+        errors: np.ndarray,
+        theta_o: np.ndarray,
+        plane: np.ndarray,
+        plane_basis: np.ndarray,
+        peak: float,
+    ):
         self.coefficients = coefficients  # ((MAX_ORDER + 1)^2,) of the luminance lobe
         self.errors = errors  # (MAX_ORDER + 1,) relative L2 error over the hemisphere
         self.theta_o = theta_o  # plane of incidence, -90 (light side) .. 90 deg
@@ -79,8 +87,9 @@ class SHData:
         return self.plane_basis[:, :n] @ self.coefficients[:n]
 
 
-def sh_data(renderer, state: ModelState, theta_i: float, phi_i: float,
-            grid: tuple[int, int] = GRID) -> SHData:
+def sh_data(
+    renderer, state: ModelState, theta_i: float, phi_i: float, grid: tuple[int, int] = GRID
+) -> SHData:
     """Project the model's lobe (from its GLSL) for light (theta_i, phi_i) on harmonics."""
     proj = projector(*grid)
     V = proj.grid.directions
@@ -92,8 +101,7 @@ def sh_data(renderer, state: ModelState, theta_i: float, phi_i: float,
     errors = proj.errors(lobe, coefficients)
     polar = renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
     theta_o, basis = plane_basis(float(phi_i))
-    plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0,
-                          neginf=0.0)
+    plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0, neginf=0.0)
     finite = plane[np.abs(theta_o) <= 87.0]
     peak = float(finite.max()) if finite.size else 0.0
     return SHData(coefficients[:, 0], errors, theta_o, plane, basis, peak)
@@ -125,8 +133,9 @@ class SHView(View):
         self.lobe_plot.hideButtons()
         self.lobe_plot.setRange(xRange=(-90, 90), yRange=(-0.35, 1.15), padding=0)
         self.lobe_plot.addItem(pg.InfiniteLine(pos=0.0, angle=0, pen=pg.mkPen((120, 120, 120))))
-        self.mirror = pg.InfiniteLine(angle=90, pen=pg.mkPen(
-            (120, 200, 255), style=Qt.PenStyle.DashLine))
+        self.mirror = pg.InfiniteLine(
+            angle=90, pen=pg.mkPen((120, 200, 255), style=Qt.PenStyle.DashLine)
+        )
         self.lobe_plot.addItem(self.mirror)
         self.lobe_curve = self.lobe_plot.plot()
         self.series_curve = self.lobe_plot.plot()
@@ -134,15 +143,18 @@ class SHView(View):
         self.error_plot.setLabel("bottom", "order L")
         self.error_plot.setLabel("left", "error")
         self.error_plot.getAxis("bottom").setTicks(
-            [[(k, str(k)) for k in range(0, MAX_ORDER + 1, 8)]])
+            [[(k, str(k)) for k in range(0, MAX_ORDER + 1, 8)]]
+        )
         self.error_plot.setLogMode(False, True)
         self.error_plot.setMouseEnabled(False, False)
         self.error_curve = self.error_plot.plot()
         self.order_mark = pg.InfiniteLine(angle=90, pen=pg.mkPen(SERIES_COLOR, width=1.5))
         self.error_plot.addItem(self.order_mark)
-        self.info.setToolTip("left: f_r cos θo in the plane of incidence (solid) and its "
-                             "spherical-harmonics series (dashed yellow); right: the "
-                             "relative L2 error over the hemisphere vs order (yellow: L)")
+        self.info.setToolTip(
+            "left: f_r cos θo in the plane of incidence (solid) and its "
+            "spherical-harmonics series (dashed yellow); right: the "
+            "relative L2 error over the hemisphere vs order (yellow: L)"
+        )
         self.data: SHData | None = None
         self.state: ModelState | None = None
         self.shown: tuple = ()
@@ -172,10 +184,10 @@ class SHView(View):
 
     def plane(self, state: ModelState, theta_i: float, phi_i: float) -> np.ndarray:
         """The lobe in the plane of incidence alone: the cheap part, drawn while sliding."""
-        polar = self.renderer.polar(state.model, state.values, theta_i, phi_i,
-                                    cos_weighted=True)
-        return np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0,
-                             neginf=0.0)
+        polar = self.renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
+        return np.nan_to_num(
+            polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0, neginf=0.0
+        )
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings
@@ -187,8 +199,11 @@ class SHView(View):
             self.shown = ()
             for curve in (self.lobe_curve, self.series_curve, self.error_curve):
                 curve.setData([], [])
-            self.info.setText("an ideal mirror has no finite lobe to expand"
-                     if state is not None else "no model to show")
+            self.info.setText(
+                "an ideal mirror has no finite lobe to expand"
+                if state is not None
+                else "no model to show"
+            )
             return False
         key = state_key(state, s["theta_i"], s["phi_i"])
         hit = self.cache.get(id(state))
@@ -200,14 +215,18 @@ class SHView(View):
             except (ShaderCompileError, ModelError):
                 return False
             theta_o = np.arange(-90.0, 90.5, 1.0)
-            self.show_lobe(state, theta_o, plane, max(finite_max(plane[np.abs(theta_o) <= 87]),
-                                                      1e-9))
+            self.show_lobe(
+                state, theta_o, plane, max(finite_max(plane[np.abs(theta_o) <= 87]), 1e-9)
+            )
             self.series_curve.setData([], [])
             self.shown = ()
             self.info.setText("series and error follow when the slider stops")
             return True
-        self.data = self.cached(state, (*key, GRID), lambda: sh_data(
-            self.renderer, state, s["theta_i"], s["phi_i"], GRID))
+        self.data = self.cached(
+            state,
+            (*key, GRID),
+            lambda: sh_data(self.renderer, state, s["theta_i"], s["phi_i"], GRID),
+        )
         data = self.data
         if data is None:
             return False
@@ -217,22 +236,27 @@ class SHView(View):
             return False
         self.shown = shown
         self.show_lobe(state, data.theta_o, data.plane, max(data.peak, 1e-9))
-        self.series_curve.setData(data.theta_o, data.reconstruction(order) * self.scale, pen=pen(
-            SERIES_COLOR, 1.5, Qt.PenStyle.DashLine))
+        self.series_curve.setData(
+            data.theta_o,
+            data.reconstruction(order) * self.scale,
+            pen=pen(SERIES_COLOR, 1.5, Qt.PenStyle.DashLine),
+        )
         errors = np.maximum(data.errors, 1e-6)  # log axis
         low = math.floor(math.log10(errors.min()))
         if low != self.low:
             self.low = low
-            self.error_plot.setRange(xRange=(-0.5, MAX_ORDER + 0.5), yRange=(low, 0.2),
-                                     padding=0)
+            self.error_plot.setRange(xRange=(-0.5, MAX_ORDER + 0.5), yRange=(low, 0.2), padding=0)
         self.error_curve.setData(np.arange(MAX_ORDER + 1), errors, pen=pen(state.color))
         self.order_mark.setValue(order)
-        self.info.setText(f"L = {order}: {sh.coefficient_count(order)} coefficients, "
-                 f"error {100 * data.errors[order]:.2g} %")
+        self.info.setText(
+            f"L = {order}: {sh.coefficient_count(order)} coefficients, "
+            f"error {100 * data.errors[order]:.2g} %"
+        )
         return False
 
-    def show_lobe(self, state: ModelState, theta_o: np.ndarray, plane: np.ndarray,
-                  top: float) -> None:
+    def show_lobe(
+        self, state: ModelState, theta_o: np.ndarray, plane: np.ndarray, top: float
+    ) -> None:
         """The lobe (and later its series) relative to the lobe's peak: a fixed y range,
         so no new ticks or layout while a slider moves, and the shape is what matters."""
         self.scale = 1.0 / top

@@ -21,8 +21,18 @@ from lab.presets import (  # noqa: F401 (the app's modules import these from her
     shipped_presets,
 )
 
-PALETTE = ["#e6194b", "#3cb44b", "#4363d8", "#f58231", "#911eb4", "#42d4f4", "#f032e6",
-           "#bfef45", "#9a6324", "#808000"]
+PALETTE = [
+    "#e6194b",
+    "#3cb44b",
+    "#4363d8",
+    "#f58231",
+    "#911eb4",
+    "#42d4f4",
+    "#f032e6",
+    "#bfef45",
+    "#9a6324",
+    "#808000",
+]
 
 
 class ModelState(QObject):
@@ -31,8 +41,14 @@ class ModelState(QObject):
     changed = pyqtSignal()  # parameter values or code: the views redraw
     display_changed = pyqtSignal()  # colour, label, visibility
 
-    def __init__(self, model: Model, values: dict | None = None, color: str = "#e6194b",
-                 label: str = "", from_file: bool = False):
+    def __init__(
+        self,
+        model: Model,
+        values: dict | None = None,
+        color: str = "#e6194b",
+        label: str = "",
+        from_file: bool = False,
+    ):
         super().__init__()
         self.model = model
         self.values: dict[str, Value] = model.resolve(values or {})
@@ -133,8 +149,14 @@ class LabState(QObject):
         free = [c for c in PALETTE if c not in used]
         return free[0] if free else PALETTE[len(self.models) % len(PALETTE)]
 
-    def add(self, model: Model, values: dict | None = None, label: str = "",
-            from_file: bool = False, color: str | None = None) -> ModelState:
+    def add(
+        self,
+        model: Model,
+        values: dict | None = None,
+        label: str = "",
+        from_file: bool = False,
+        color: str | None = None,
+    ) -> ModelState:
         state = ModelState(model, values, color or self.next_color(), label, from_file)
         state.changed.connect(self.changed.emit)
         state.display_changed.connect(self.changed.emit)
@@ -189,8 +211,10 @@ class LabState(QObject):
     # -- presets ------------------------------------------------------------------------
     def to_dict(self, base: Path | None = None) -> dict:
         """The state in the preset layout (lab/presets.py); paths relative to `base`."""
-        models = [presets.model_entry(m.model, m.values, m.label, m.color, m.visible,
-                                      m.from_file, base) for m in self.models]
+        models = [
+            presets.model_entry(m.model, m.values, m.label, m.color, m.visible, m.from_file, base)
+            for m in self.models
+        ]
         return {"settings": dict(self.settings.values), "model": models}
 
     def from_dict(self, data: dict, base: Path | None = None, where: str = "preset") -> None:
@@ -199,15 +223,22 @@ class LabState(QObject):
         if not isinstance(entries, list):
             raise ModelError("'model' must be a list of [[model]] tables", where)
         # Everything is loaded and checked before anything changes.
-        loaded = [(*presets.entry_model(entry, number, base, where), entry)
-                  for number, entry in enumerate(entries, start=1)]
+        loaded = [
+            (*presets.entry_model(entry, number, base, where), entry)
+            for number, entry in enumerate(entries, start=1)
+        ]
         settings = presets.check_settings(data.get("settings", {}), where)
         self.clear()
         for name, value in settings.items():
             self.settings.set(name, value)
         for model, values, from_file, entry in loaded:
-            state = self.add(model, values, str(entry.get("label", "")), from_file,
-                             str(entry.get("color", "")) or None)
+            state = self.add(
+                model,
+                values,
+                str(entry.get("label", "")),
+                from_file,
+                str(entry.get("color", "")) or None,
+            )
             state.visible = bool(entry.get("visible", True))
         if self.models:
             self.select(self.models[0])

@@ -49,7 +49,7 @@ def tonemap(image: np.ndarray, exposure: float, gamma: float) -> QImage:
     Float32 in place throughout (it runs for every image of every frame), built in the
     BGRA byte order of a 32-bit RGB QImage, which the raster engine draws unconverted.
     """
-    bgr = image[..., 2::-1] * np.float32(2.0 ** exposure)
+    bgr = image[..., 2::-1] * np.float32(2.0**exposure)
     np.fmax(bgr, np.float32(0.0), out=bgr)  # fmax also turns NaN into 0
     np.fmin(bgr, np.float32(1.0), out=bgr)
     np.power(bgr, np.float32(1.0 / max(gamma, 0.1)), out=bgr)
@@ -187,8 +187,9 @@ class View(QWidget):
         self.cache[id(state)] = (key, value)
         return value
 
-    def best(self, state: ModelState, fast: bool, fast_key: tuple, full_key: tuple,
-             compute) -> tuple[object, bool]:
+    def best(
+        self, state: ModelState, fast: bool, fast_key: tuple, full_key: tuple, compute
+    ) -> tuple[object, bool]:
         """(result, coarse): the full-quality result when at hand or within this step's
         budget, else the interactive one. `compute(full)` makes either."""
         hit = self.cache.get(id(state))
@@ -199,8 +200,9 @@ class View(QWidget):
             return self.cached(state, full_key, lambda: compute(True)), False
         return self.cached(state, fast_key, lambda: compute(False)), True
 
-    def climb(self, state: ModelState, fast: bool, key: tuple, sizes: list[int],
-              compute) -> tuple[object, bool]:
+    def climb(
+        self, state: ModelState, fast: bool, key: tuple, sizes: list[int], compute
+    ) -> tuple[object, bool]:
         """(result, coarse) for resolutions `sizes` (ascending): while sliding the smallest
         (or whatever is at hand), then one size up per refinement step, so no single
         step is long. `compute(size)` makes one."""
@@ -251,10 +253,12 @@ class ImageRow(QWidget):
             else:
                 painter.drawImage(QRect(left, 0, side, side), image)
             painter.setPen(QColor(color))
-            caption = painter.fontMetrics().elidedText(caption, Qt.TextElideMode.ElideMiddle,
-                                                       side)
-            painter.drawText(QRect(left, side, side, self.caption_height()),
-                             Qt.AlignmentFlag.AlignCenter, caption)
+            caption = painter.fontMetrics().elidedText(caption, Qt.TextElideMode.ElideMiddle, side)
+            painter.drawText(
+                QRect(left, side, side, self.caption_height()),
+                Qt.AlignmentFlag.AlignCenter,
+                caption,
+            )
         painter.end()
 
     def _drag(self, event) -> None:
@@ -304,14 +308,22 @@ class SphereView(View):
     def side(self) -> int:
         """The spheres' size on screen: they are rendered at exactly that size."""
         n = max(len(self.lab.visible_models()), 1)
-        side = max(min(self.canvas.width() // n,
-                       self.canvas.height() - self.canvas.caption_height()), 32)
+        side = max(
+            min(self.canvas.width() // n, self.canvas.height() - self.canvas.caption_height()), 32
+        )
         return min(side, 512)
 
     def inputs(self) -> tuple:
         s = self.lab.settings
-        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
-                s["phi_i"], s["multiply_cos"], s["exposure"], s["gamma"], self.side())
+        return (
+            tuple(look_key(m) for m in self.lab.visible_models()),
+            s["theta_i"],
+            s["phi_i"],
+            s["multiply_cos"],
+            s["exposure"],
+            s["gamma"],
+            self.side(),
+        )
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings
@@ -323,11 +335,18 @@ class SphereView(View):
         tone = (s["exposure"], s["gamma"])
         for state in self.lab.visible_models():
             image, rough = self.best(
-                state, fast, (light, small, s["multiply_cos"], state_key(state)),
+                state,
+                fast,
+                (light, small, s["multiply_cos"], state_key(state)),
                 (light, full, s["multiply_cos"], state_key(state)),
                 lambda use_full, st=state: self.renderer.sphere(
-                    st.model, st.values, light, size=full if use_full else small,
-                    multiply_cos=s["multiply_cos"]))
+                    st.model,
+                    st.values,
+                    light,
+                    size=full if use_full else small,
+                    multiply_cos=s["multiply_cos"],
+                ),
+            )
             coarse = coarse or rough
             if image is None:
                 continue
@@ -375,8 +394,11 @@ class PolarView(View):
         self.plot.plot([-1.05, 1.05], [0, 0], pen=pg.mkPen((150, 150, 150)))
         self.marks = []
         self.texts: list[pg.TextItem] = []
-        for label, color in (("normal", (200, 200, 200)), ("incident", (255, 210, 0)),
-                             ("mirror", (120, 200, 255))):
+        for label, color in (
+            ("normal", (200, 200, 200)),
+            ("incident", (255, 210, 0)),
+            ("mirror", (120, 200, 255)),
+        ):
             line = self.plot.plot(pen=pg.mkPen(color, width=1, style=Qt.PenStyle.DashLine))
             text = pg.TextItem(label, color=color, anchor=(0.5, 1.0))
             self.plot.addItem(text)
@@ -388,14 +410,19 @@ class PolarView(View):
 
     def radius(self, values: np.ndarray, peak: float) -> np.ndarray:
         if self.lab.settings["polar_log"]:
-            floor = peak * 10.0 ** -self.DECADES
+            floor = peak * 10.0**-self.DECADES
             return np.maximum(np.log10(np.maximum(values, floor) / floor), 0.0) / self.DECADES
         return values / peak
 
     def inputs(self) -> tuple:
         s = self.lab.settings
-        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
-                s["phi_i"], s["polar_cos"], s["polar_log"])
+        return (
+            tuple(look_key(m) for m in self.lab.visible_models()),
+            s["theta_i"],
+            s["phi_i"],
+            s["polar_cos"],
+            s["polar_log"],
+        )
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings
@@ -403,8 +430,13 @@ class PolarView(View):
         self.data = []
         for state in self.lab.visible_models():
             key = state_key(state, theta_i, phi_i, cos)
-            polar = self.cached(state, key, lambda st=state: self.renderer.polar(
-                st.model, st.values, theta_i, phi_i, cos_weighted=cos))
+            polar = self.cached(
+                state,
+                key,
+                lambda st=state: self.renderer.polar(
+                    st.model, st.values, theta_i, phi_i, cos_weighted=cos
+                ),
+            )
             if polar is not None:
                 self.data.append((state, polar))
         lum = [(st, p, p.values.astype(np.float64) @ LUMA) for st, p in self.data]
@@ -432,8 +464,7 @@ class PolarView(View):
             curve.setData(r * np.sin(a), r * np.cos(a), pen=pen(state.color))
             if polar.spike is not None:
                 h = float(self.radius(np.array([float(np.asarray(polar.spike) @ LUMA)]), peak)[0])
-                spike.setData([0, h * math.sin(ti)], [0, h * math.cos(ti)],
-                              pen=pen(state.color, 4))
+                spike.setData([0, h * math.sin(ti)], [0, h * math.cos(ti)], pen=pen(state.color, 4))
             elif spike.xData is not None and len(spike.xData):
                 spike.setData([], [])
         return False
@@ -552,22 +583,39 @@ class LobeView(View):
         self.image: np.ndarray | None = None  # the last picture, RGBA bytes
 
     def size_(self) -> tuple[int, int]:
-        return (min(max(self.canvas.width(), 16), self.MAX_SIDE),
-                min(max(self.canvas.height(), 16), self.MAX_SIDE))
+        return (
+            min(max(self.canvas.width(), 16), self.MAX_SIDE),
+            min(max(self.canvas.height(), 16), self.MAX_SIDE),
+        )
 
     def camera(self) -> LobeCamera:
         s = self.lab.settings
         return LobeCamera(s["lobe_yaw"], s["lobe_pitch"], s["lobe_zoom"])
 
     def full_grid(self, count: int) -> tuple[int, int]:
-        return next((g for g in self.GRIDS if (g[0] - 1) * (g[1] - 1) * 2 * max(count, 1)
-                     <= self.TRIANGLES), self.GRIDS[-1])
+        return next(
+            (
+                g
+                for g in self.GRIDS
+                if (g[0] - 1) * (g[1] - 1) * 2 * max(count, 1) <= self.TRIANGLES
+            ),
+            self.GRIDS[-1],
+        )
 
     def inputs(self) -> tuple:
         s = self.lab.settings
-        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"],
-                s["phi_i"], s["polar_cos"], s["polar_log"], s["lobe_yaw"], s["lobe_pitch"],
-                s["lobe_zoom"], self.wire.isChecked(), self.size_())
+        return (
+            tuple(look_key(m) for m in self.lab.visible_models()),
+            s["theta_i"],
+            s["phi_i"],
+            s["polar_cos"],
+            s["polar_log"],
+            s["lobe_yaw"],
+            s["lobe_pitch"],
+            s["lobe_zoom"],
+            self.wire.isChecked(),
+            self.size_(),
+        )
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings
@@ -576,8 +624,13 @@ class LobeView(View):
         for state in self.lab.visible_models():
             # The scale comes from the finest grid, whatever grid draws: no jump on refining.
             key = state_key(state, theta_i, phi_i, cos)
-            peak = self.cached(state, key, lambda st=state: self.renderer.lobe_peak(
-                st.model, st.values, theta_i, phi_i, cos, LOBE_GRID))
+            peak = self.cached(
+                state,
+                key,
+                lambda st=state: self.renderer.lobe_peak(
+                    st.model, st.values, theta_i, phi_i, cos, LOBE_GRID
+                ),
+            )
             if peak is not None:
                 self.data.append((state, peak))
         full = self.full_grid(len(self.data))
@@ -586,27 +639,40 @@ class LobeView(View):
         size, camera = self.size_(), self.camera()
         try:
             image = self.renderer.lobe_mesh(
-                layers, theta_i, phi_i, size, camera, cos, s["polar_log"], grid,
+                layers,
+                theta_i,
+                phi_i,
+                size,
+                camera,
+                cos,
+                s["polar_log"],
+                grid,
                 "wire" if self.wire.isChecked() else "solid",
                 peaks=[p for _, p in self.data],
-                background=(*(np.array(BACKGROUND) / 255.0), 1.0), dtype="u1")
+                background=(*(np.array(BACKGROUND) / 255.0), 1.0),
+                dtype="u1",
+            )
         except (ShaderCompileError, ModelError) as err:  # lobe_peak compiled them already
             for state, _ in self.data:
                 state.error = state.error or str(err)
             image = None
         self.image = image
         if image is not None:
-            self.canvas.image = QImage(image.data, size[0], size[1], 4 * size[0],
-                                       QImage.Format.Format_RGBA8888).copy()
-        ends = [direction(0.0, 0.0), direction(theta_i, phi_i),
-                direction(theta_i, phi_i + 180.0)]
+            self.canvas.image = QImage(
+                image.data, size[0], size[1], 4 * size[0], QImage.Format.Format_RGBA8888
+            ).copy()
+        ends = [direction(0.0, 0.0), direction(theta_i, phi_i), direction(theta_i, phi_i + 180.0)]
         points = camera.project(1.2 * np.array(ends), size)
         sx, sy = self.canvas.width() / size[0], self.canvas.height() / size[1]
         half = self.canvas.fontMetrics().height() / 3
         self.canvas.labels = [
-            (QPointF(x * sx - half, y * sy + half), letter,
-             tuple(round(255 * c) for c in LOBE_MARK_RGB[name]))
-            for (x, y), (letter, name) in zip(points, self.MARKS, strict=True)]
+            (
+                QPointF(x * sx - half, y * sy + half),
+                letter,
+                tuple(round(255 * c) for c in LOBE_MARK_RGB[name]),
+            )
+            for (x, y), (letter, name) in zip(points, self.MARKS, strict=True)
+        ]
         self.canvas.update()
         return grid != full
 
@@ -653,8 +719,10 @@ class SliceCanvas(QWidget):
         cell_w, cell_h = left + side + right, top + side + bottom
         x0 = (self.width() - cols * cell_w) // 2
         y0 = (self.height() - rows * cell_h) // 2
-        return [QRect(x0 + (i % cols) * cell_w + left, y0 + (i // cols) * cell_h + top,
-                      side, side) for i in range(n)]
+        return [
+            QRect(x0 + (i % cols) * cell_w + left, y0 + (i // cols) * cell_h + top, side, side)
+            for i in range(n)
+        ]
 
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
@@ -672,11 +740,16 @@ class SliceCanvas(QWidget):
             painter.setFont(self.font())
             painter.setPen(QColor(color))
             room = rect.width() + 40
-            painter.drawText(QRect(rect.left() - 20, rect.top() - title_metrics.height() - 3,
-                                   room, title_metrics.height() + 2),
-                             Qt.AlignmentFlag.AlignCenter,
-                             title_metrics.elidedText(caption, Qt.TextElideMode.ElideRight,
-                                                      room))
+            painter.drawText(
+                QRect(
+                    rect.left() - 20,
+                    rect.top() - title_metrics.height() - 3,
+                    room,
+                    title_metrics.height() + 2,
+                ),
+                Qt.AlignmentFlag.AlignCenter,
+                title_metrics.elidedText(caption, Qt.TextElideMode.ElideRight, room),
+            )
             painter.setFont(font)
             painter.setPen(QPen(axis, 1))
             painter.drawRect(rect.adjusted(0, 0, -1, -1))
@@ -687,18 +760,29 @@ class SliceCanvas(QWidget):
                 y = rect.bottom() - round(tick / 90 * (rect.height() - 1))
                 painter.drawLine(x, rect.bottom(), x, rect.bottom() + 3)
                 painter.drawLine(rect.left() - 3, y, rect.left(), y)
-                painter.drawText(QRect(x - 30, rect.bottom() + 4, 60, line),
-                                 Qt.AlignmentFlag.AlignHCenter, f"{tick}°")
-                painter.drawText(QRect(rect.left() - 64, y - line // 2, 60, line),
-                                 Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
-                                 f"{tick}°")
-            painter.drawText(QRect(rect.left(), rect.bottom() + 4 + line, rect.width(), line),
-                             Qt.AlignmentFlag.AlignHCenter, "θh")
+                painter.drawText(
+                    QRect(x - 30, rect.bottom() + 4, 60, line),
+                    Qt.AlignmentFlag.AlignHCenter,
+                    f"{tick}°",
+                )
+                painter.drawText(
+                    QRect(rect.left() - 64, y - line // 2, 60, line),
+                    Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
+                    f"{tick}°",
+                )
+            painter.drawText(
+                QRect(rect.left(), rect.bottom() + 4 + line, rect.width(), line),
+                Qt.AlignmentFlag.AlignHCenter,
+                "θh",
+            )
             painter.save()
             painter.translate(rect.left() - fm.horizontalAdvance("90°") - 8, rect.center().y())
             painter.rotate(-90)
-            painter.drawText(QRect(-rect.height() // 2, -line, rect.height(), line),
-                             Qt.AlignmentFlag.AlignCenter, "θd")
+            painter.drawText(
+                QRect(-rect.height() // 2, -line, rect.height(), line),
+                Qt.AlignmentFlag.AlignCenter,
+                "θd",
+            )
             painter.restore()
         painter.end()
 
@@ -714,8 +798,9 @@ class SliceView(View):
         super().__init__(lab, renderer)
         s = lab.settings
         phi_d = SettingSlider(s, "phi_d", "φd", 0.0, 180.0, 1.0)
-        phi_d.setToolTip("the slice's difference azimuth; the images use the spheres' "
-                         "exposure and gamma")
+        phi_d.setToolTip(
+            "the slice's difference azimuth; the images use the spheres' exposure and gamma"
+        )
         self.tools.addWidget(phi_d, 1)
         self.canvas = SliceCanvas()
         self.layout_.addWidget(self.canvas, 1)
@@ -724,9 +809,10 @@ class SliceView(View):
 
     def axes(self) -> list[tuple[tuple[float, float], tuple[float, float], QRect]]:
         """Each plot's (theta_h range, theta_d range, rectangle on screen)."""
-        return [((0.0, 90.0), (0.0, 90.0), rect)
-                for rect in self.canvas.plot_rects(len(self.canvas.images))][
-                    : len(self.canvas.images)]
+        return [
+            ((0.0, 90.0), (0.0, 90.0), rect)
+            for rect in self.canvas.plot_rects(len(self.canvas.images))
+        ][: len(self.canvas.images)]
 
     def side(self) -> int:
         rects = self.canvas.plot_rects(len(self.lab.visible_models()))
@@ -734,8 +820,13 @@ class SliceView(View):
 
     def inputs(self) -> tuple:
         s = self.lab.settings
-        return (tuple(look_key(m) for m in self.lab.visible_models()), s["phi_d"],
-                s["exposure"], s["gamma"], self.side())
+        return (
+            tuple(look_key(m) for m in self.lab.visible_models()),
+            s["phi_d"],
+            s["exposure"],
+            s["gamma"],
+            self.side(),
+        )
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings
@@ -747,9 +838,14 @@ class SliceView(View):
         for state in self.lab.visible_models():
             key = state_key(state, s["phi_d"])
             image, rough = self.best(
-                state, fast, (*key, small), (*key, full),
+                state,
+                fast,
+                (*key, small),
+                (*key, full),
                 lambda use_full, st=state: self.renderer.slice(
-                    st.model, st.values, s["phi_d"], full if use_full else small))
+                    st.model, st.values, s["phi_d"], full if use_full else small
+                ),
+            )
             coarse = coarse or rough
             if image is None:
                 continue
@@ -786,8 +882,12 @@ class AlbedoView(View):
         self.plot.hideButtons()
         self.layout_.addWidget(self.plot, 1)
         self.data: list[tuple[ModelState, np.ndarray, np.ndarray]] = []
-        unit = pg.InfiniteLine(pos=1.0, angle=0, pen=pg.mkPen(
-            (220, 220, 220), style=Qt.PenStyle.DashLine), label="albedo = 1")
+        unit = pg.InfiniteLine(
+            pos=1.0,
+            angle=0,
+            pen=pg.mkPen((220, 220, 220), style=Qt.PenStyle.DashLine),
+            label="albedo = 1",
+        )
         self.plot.addItem(unit)
         self.texts = [unit.label]
         self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
@@ -798,8 +898,9 @@ class AlbedoView(View):
         """The y range: the smallest of 1.1, 1.5, 2, 3, 5, 10, ... above the data. While a
         slider moves it only grows (new ticks cost more than the curves); it may shrink
         again when the slider stops."""
-        wanted = next(t for t in (1.1, 1.5, 2.0, 3.0, 5.0, 10.0, 20.0, 50.0, math.inf)
-                      if t >= top * 1.05)
+        wanted = next(
+            t for t in (1.1, 1.5, 2.0, 3.0, 5.0, 10.0, 20.0, 50.0, math.inf) if t >= top * 1.05
+        )
         if not math.isfinite(wanted):
             wanted = 10.0 ** math.ceil(math.log10(top * 1.05))
         if wanted > self.top or wanted < self.top and not grow_only:
@@ -808,8 +909,7 @@ class AlbedoView(View):
 
     def inputs(self) -> tuple:
         # Albedo is integrated over every outgoing direction: it does not depend on theta_i.
-        return (tuple(look_key(m) for m in self.lab.visible_models()),
-                self.lab.settings["phi_i"])
+        return (tuple(look_key(m) for m in self.lab.visible_models()), self.lab.settings["phi_i"])
 
     def draw(self, fast: bool) -> bool:
         phi_i = self.lab.settings["phi_i"]
@@ -820,16 +920,18 @@ class AlbedoView(View):
 
             def compute(full: bool, st=state):
                 thetas, samples, wedges = self.FULL if full else self.FAST
-                return thetas, self.renderer.albedo(st.model, st.values, thetas, phi_i,
-                                                    samples=samples, wedges=wedges)
+                return thetas, self.renderer.albedo(
+                    st.model, st.values, thetas, phi_i, samples=samples, wedges=wedges
+                )
 
             result, rough = self.best(state, fast, (*key, "fast"), (*key, "full"), compute)
             coarse = coarse or rough
             if result is not None:
                 self.data.append((state, result[0], result[1].max(axis=1)))
         while len(self.curves) < len(self.data):
-            gain_marks = self.plot.plot(pen=None, symbol="x", symbolBrush=None,
-                                        symbolPen=pg.mkPen((255, 60, 60), width=2))
+            gain_marks = self.plot.plot(
+                pen=None, symbol="x", symbolBrush=None, symbolPen=pg.mkPen((255, 60, 60), width=2)
+            )
             self.curves.append((self.plot.plot(), gain_marks))
         gain = []
         for index, (curve, marks) in enumerate(self.curves):
@@ -857,8 +959,11 @@ class ObjectView(View):
     title = "Lit object / spatially varying"
     name = "object"
     FAST_SIZE = 96
-    FILL_LIGHTS = [Light(60.0, 200.0, (0.35, 0.4, 0.55)), Light(75.0, 100.0, (0.5, 0.4, 0.3)),
-                   Light(50.0, 300.0, (0.3, 0.3, 0.3))]
+    FILL_LIGHTS = [
+        Light(60.0, 200.0, (0.35, 0.4, 0.55)),
+        Light(75.0, 100.0, (0.5, 0.4, 0.3)),
+        Light(50.0, 300.0, (0.3, 0.3, 0.3)),
+    ]
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
@@ -867,7 +972,8 @@ class ObjectView(View):
             combo = SettingCombo(s, name, items)
             # Long choices must not set the view's width: the menu shows them in full.
             combo.setSizeAdjustPolicy(
-                QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+                QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon
+            )
             combo.setMinimumContentsLength(6)
             self.tools.addWidget(combo, 1)
         more = QHBoxLayout()  # a second row: the view stays narrow enough to share a row
@@ -896,15 +1002,32 @@ class ObjectView(View):
         return visible[0] if visible else None
 
     def side(self) -> int:
-        return max(min(self.canvas.width(), self.canvas.height() - self.canvas.caption_height(),
-                       512), 32)
+        return max(
+            min(self.canvas.width(), self.canvas.height() - self.canvas.caption_height(), 512), 32
+        )
 
     def inputs(self) -> tuple:
         s = self.lab.settings
         state = self.subject()
-        return (look_key(state) if state else None, self.side(),
-                *(s[k] for k in ("theta_i", "phi_i", "lights", "ambient", "shape", "mode", "yaw",
-                                 "pitch", "exposure", "gamma")))
+        return (
+            look_key(state) if state else None,
+            self.side(),
+            *(
+                s[k]
+                for k in (
+                    "theta_i",
+                    "phi_i",
+                    "lights",
+                    "ambient",
+                    "shape",
+                    "mode",
+                    "yaw",
+                    "pitch",
+                    "exposure",
+                    "gamma",
+                )
+            ),
+        )
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings
@@ -917,19 +1040,41 @@ class ObjectView(View):
         small = min(full, self.FAST_SIZE)
         lights = [Light(s["theta_i"], s["phi_i"])] + self.FILL_LIGHTS[: s["lights"] - 1]
         ambient = (s["ambient"],) * 3
-        key = state_key(state, s["theta_i"], s["phi_i"], s["lights"], s["ambient"],
-                        s["shape"], s["mode"], s["yaw"], s["pitch"])
+        key = state_key(
+            state,
+            s["theta_i"],
+            s["phi_i"],
+            s["lights"],
+            s["ambient"],
+            s["shape"],
+            s["mode"],
+            s["yaw"],
+            s["pitch"],
+        )
         self.cache = {k: v for k, v in self.cache.items() if k == id(state)}
         # The object's full size costs several milliseconds: refine through a middle size.
         sizes = sorted({small, min(full, 2 * small), full})
-        image, coarse = self.climb(state, fast, key, sizes, lambda size: (
-            self.renderer.object(state.model, state.values, lights, ambient, s["shape"],
-                                 s["mode"], s["yaw"], s["pitch"], size)))
+        image, coarse = self.climb(
+            state,
+            fast,
+            key,
+            sizes,
+            lambda size: self.renderer.object(
+                state.model,
+                state.values,
+                lights,
+                ambient,
+                s["shape"],
+                s["mode"],
+                s["yaw"],
+                s["pitch"],
+                size,
+            ),
+        )
         self.image = image
         if image is not None:
             caption = f"{state.label}: {MODES[s['mode']]}"
-            self.canvas.images = [(tonemap(image, s["exposure"], s["gamma"]), caption,
-                                   state.color)]
+            self.canvas.images = [(tonemap(image, s["exposure"], s["gamma"]), caption, state.color)]
         self.canvas.update()
         return coarse
 

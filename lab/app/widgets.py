@@ -106,7 +106,8 @@ class ParamControl(QWidget):
             self.state.set_value(self.param.name, value)
         except ModelError as err:
             self.window().statusBar().showMessage(str(err), 5000) if hasattr(
-                self.window(), "statusBar") else None
+                self.window(), "statusBar"
+            ) else None
             self.refresh()
 
     def _from_slider(self, position: int) -> None:
@@ -197,8 +198,9 @@ class ParamPanel(QWidget):
         self.rebuild()
 
     def _show_formula(self, shown: bool) -> None:
-        self.formula_button.setArrowType(Qt.ArrowType.DownArrow if shown
-                                         else Qt.ArrowType.RightArrow)
+        self.formula_button.setArrowType(
+            Qt.ArrowType.DownArrow if shown else Qt.ArrowType.RightArrow
+        )
         self.formula.setVisible(shown and bool(self.formula.text()))
 
     def rebuild(self) -> None:
@@ -264,8 +266,10 @@ class ModelList(QWidget):
         add = QPushButton("Add")
         add.clicked.connect(self.add_selected)
         opener = QPushButton("Open…")
-        opener.setToolTip("open a model .glsl file or a BRDF Explorer .brdf file (watched), "
-                          "or a MERL .binary table (the measured model)")
+        opener.setToolTip(
+            "open a model .glsl file or a BRDF Explorer .brdf file (watched), "
+            "or a MERL .binary table (the measured model)"
+        )
         opener.clicked.connect(self.open_file.emit)
         row.addWidget(self.library, 1)
         row.addWidget(add)
@@ -339,8 +343,10 @@ class ModelList(QWidget):
 
     def _update_labels(self) -> None:
         # Called on every change: the rows are rebuilt only when what they show changed.
-        shown = [(s.label, s.color, s.visible, s.error, self.lab.solo is s,
-                  s is self.lab.selected) for s in self.lab.models]
+        shown = [
+            (s.label, s.color, s.visible, s.error, self.lab.solo is s, s is self.lab.selected)
+            for s in self.lab.models
+        ]
         if shown == self.shown and self.list.count() == len(shown):
             return
         self.shown = shown
@@ -377,8 +383,12 @@ class LiveText(QWidget):
     costs more than a whole frame's drawing; this keeps a fixed height and elides.
     """
 
-    def __init__(self, text: str = "", width: int | None = None,
-                 align: Qt.AlignmentFlag = Qt.AlignmentFlag.AlignLeft):
+    def __init__(
+        self,
+        text: str = "",
+        width: int | None = None,
+        align: Qt.AlignmentFlag = Qt.AlignmentFlag.AlignLeft,
+    ):
         super().__init__()
         self._text, self.color, self.align, self.width_ = text, None, align, width
         self._fit()
@@ -386,8 +396,9 @@ class LiveText(QWidget):
     def _fit(self) -> None:
         metrics = self.fontMetrics()
         if self.width_ is not None:
-            self.setFixedSize(metrics.horizontalAdvance("0") * self.width_ + 4,
-                              metrics.height() + 4)
+            self.setFixedSize(
+                metrics.horizontalAdvance("0") * self.width_ + 4, metrics.height() + 4
+            )
         else:
             self.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Fixed)
             self.setFixedHeight(metrics.height() + 4)
@@ -413,8 +424,7 @@ class LiveText(QWidget):
         if self.color:
             painter.setPen(QColor(self.color))
         rect = self.rect().adjusted(2, 0, -2, 0)
-        text = self.fontMetrics().elidedText(self._text, Qt.TextElideMode.ElideRight,
-                                             rect.width())
+        text = self.fontMetrics().elidedText(self._text, Qt.TextElideMode.ElideRight, rect.width())
         painter.drawText(rect, self.align | Qt.AlignmentFlag.AlignVCenter, text)
         painter.end()
 
@@ -422,8 +432,9 @@ class LiveText(QWidget):
 class SettingSlider(QWidget):
     """A labelled slider bound to one float setting (theta_i, phi_i, exposure, ...)."""
 
-    def __init__(self, settings: Settings, name: str, label: str, low: float, high: float,
-                 step: float = 0.5):
+    def __init__(
+        self, settings: Settings, name: str, label: str, low: float, high: float, step: float = 0.5
+    ):
         super().__init__()
         self.settings, self.name, self.low, self.step = settings, name, low, step
         layout = QHBoxLayout(self)
@@ -435,9 +446,7 @@ class SettingSlider(QWidget):
         self.value_label = LiveText(width=5, align=Qt.AlignmentFlag.AlignRight)
         layout.addWidget(self.slider, 1)
         layout.addWidget(self.value_label)
-        self.slider.valueChanged.connect(
-            lambda pos: settings.set(name, low + pos * step)
-        )
+        self.slider.valueChanged.connect(lambda pos: settings.set(name, low + pos * step))
         settings.changed.connect(self._changed)
         self._changed(name)
 
@@ -459,8 +468,11 @@ class SettingCheck(QCheckBox):
         self.setChecked(bool(settings[name]))
         self.toggled.connect(lambda on: settings.set(name, on))
         settings.changed.connect(
-            lambda n: n == name and self.isChecked() != settings[name]
-            and self.setChecked(bool(settings[name]))
+            lambda n: (
+                n == name
+                and self.isChecked() != settings[name]
+                and self.setChecked(bool(settings[name]))
+            )
         )
 
 
@@ -473,6 +485,9 @@ class SettingCombo(QComboBox):
         self.setCurrentIndex(int(settings[name]))
         self.currentIndexChanged.connect(lambda i: settings.set(name, i))
         settings.changed.connect(
-            lambda n: n == name and self.currentIndex() != settings[name]
-            and self.setCurrentIndex(int(settings[name]))
+            lambda n: (
+                n == name
+                and self.currentIndex() != settings[name]
+                and self.setCurrentIndex(int(settings[name]))
+            )
         )

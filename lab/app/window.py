@@ -125,13 +125,15 @@ class MainWindow(QMainWindow):
         self.error_dock.hide()
 
     def _build_views(self) -> None:
-        areas = {"sphere": Qt.DockWidgetArea.RightDockWidgetArea,
-                 "polar": Qt.DockWidgetArea.RightDockWidgetArea,
-                 "lobe3d": Qt.DockWidgetArea.RightDockWidgetArea,
-                 "slice": Qt.DockWidgetArea.BottomDockWidgetArea,
-                 "albedo": Qt.DockWidgetArea.BottomDockWidgetArea,
-                 "object": Qt.DockWidgetArea.BottomDockWidgetArea,
-                 "sh": Qt.DockWidgetArea.RightDockWidgetArea}
+        areas = {
+            "sphere": Qt.DockWidgetArea.RightDockWidgetArea,
+            "polar": Qt.DockWidgetArea.RightDockWidgetArea,
+            "lobe3d": Qt.DockWidgetArea.RightDockWidgetArea,
+            "slice": Qt.DockWidgetArea.BottomDockWidgetArea,
+            "albedo": Qt.DockWidgetArea.BottomDockWidgetArea,
+            "object": Qt.DockWidgetArea.BottomDockWidgetArea,
+            "sh": Qt.DockWidgetArea.RightDockWidgetArea,
+        }
         for cls in ALL_VIEWS:
             view = cls(self.lab, self.renderer)
             dock = QDockWidget(cls.title, self)
@@ -154,18 +156,27 @@ class MainWindow(QMainWindow):
         width, height = max(self.width(), 800), max(self.height(), 600)
         left = max(300, int(0.27 * width))
         # Qt moves a separator only when the docks on both sides of it are named.
-        self.resizeDocks([self.controls_dock, self.docks["sphere"]], [left, width - left],
-                         Qt.Orientation.Horizontal)
-        self.resizeDocks([self.docks["sphere"], self.docks["polar"], self.docks["slice"]],
-                         [int(0.28 * height), int(0.32 * height), int(0.4 * height)],
-                         Qt.Orientation.Vertical)
+        self.resizeDocks(
+            [self.controls_dock, self.docks["sphere"]],
+            [left, width - left],
+            Qt.Orientation.Horizontal,
+        )
+        self.resizeDocks(
+            [self.docks["sphere"], self.docks["polar"], self.docks["slice"]],
+            [int(0.28 * height), int(0.32 * height), int(0.4 * height)],
+            Qt.Orientation.Vertical,
+        )
         right = width - left
-        self.resizeDocks([self.docks["polar"], self.docks["lobe3d"], self.docks["sh"]],
-                         [int(0.33 * right), int(0.3 * right), int(0.37 * right)],
-                         Qt.Orientation.Horizontal)
-        self.resizeDocks([self.docks["slice"], self.docks["albedo"], self.docks["object"]],
-                         [int(0.34 * right), int(0.31 * right), int(0.35 * right)],
-                         Qt.Orientation.Horizontal)
+        self.resizeDocks(
+            [self.docks["polar"], self.docks["lobe3d"], self.docks["sh"]],
+            [int(0.33 * right), int(0.3 * right), int(0.37 * right)],
+            Qt.Orientation.Horizontal,
+        )
+        self.resizeDocks(
+            [self.docks["slice"], self.docks["albedo"], self.docks["object"]],
+            [int(0.34 * right), int(0.31 * right), int(0.35 * right)],
+            Qt.Orientation.Horizontal,
+        )
 
     def view(self, name: str) -> View:
         return next(v for v in self.views if v.name == name)
@@ -177,8 +188,7 @@ class MainWindow(QMainWindow):
         for name in model_names():
             add_menu.addAction(name, lambda n=name: self.lab.add(load_model(n)))
         self._action(file_menu, "Open model file (.glsl, .brdf)…", self.ask_open, "Ctrl+O")
-        self._action(file_menu, "Open measured BRDF (.binary)…", self.ask_open_measured,
-                     "Ctrl+M")
+        self._action(file_menu, "Open measured BRDF (.binary)…", self.ask_open_measured, "Ctrl+M")
         file_menu.addSeparator()
         self._action(file_menu, "Load preset…", self.ask_load_preset, "Ctrl+L")
         self._action(file_menu, "Save preset…", self.ask_save_preset, "Ctrl+S")
@@ -199,8 +209,9 @@ class MainWindow(QMainWindow):
         for dock in self.findChildren(QDockWidget):
             views.addAction(dock.toggleViewAction())
         views.addSeparator()
-        self._action(views, "Presenter mode (large fonts, full screen)", self.toggle_presenter,
-                     "F11")
+        self._action(
+            views, "Presenter mode (large fonts, full screen)", self.toggle_presenter, "F11"
+        )
 
     def _action(self, menu, text: str, slot, shortcut: str | None = None) -> QAction:
         action = menu.addAction(text)
@@ -258,14 +269,18 @@ class MainWindow(QMainWindow):
     # -- files --------------------------------------------------------------------------
     def ask_open(self) -> None:
         path, _ = QFileDialog.getOpenFileName(
-            self, "Open a model", "",
-            "Models (*.glsl *.brdf *.binary);;Measured BRDFs (*.binary);;All files (*)")
+            self,
+            "Open a model",
+            "",
+            "Models (*.glsl *.brdf *.binary);;Measured BRDFs (*.binary);;All files (*)",
+        )
         if path:
             self.open_file(path)
 
     def ask_open_measured(self) -> None:
         path, _ = QFileDialog.getOpenFileName(
-            self, "Open a measured BRDF", "", "MERL tables (*.binary);;All files (*)")
+            self, "Open a measured BRDF", "", "MERL tables (*.binary);;All files (*)"
+        )
         if path:
             self.open_measured(path)
 
@@ -287,8 +302,9 @@ class MainWindow(QMainWindow):
         self.renderer.sphere(model, model.defaults(), (s["theta_i"], s["phi_i"]), size=8)
         self.renderer.polar(model, model.defaults(), s["theta_i"], s["phi_i"])
 
-    def show_error(self, path: str, err: Exception,
-                   outcome: str = "the last good version keeps running") -> None:
+    def show_error(
+        self, path: str, err: Exception, outcome: str = "the last good version keeps running"
+    ) -> None:
         text = str(err)
         self.errors.setPlainText(f"{path}: {outcome}.\n{text}")
         self.error_dock.show()
@@ -330,8 +346,9 @@ class MainWindow(QMainWindow):
     def reload(self, path: str) -> None:
         """Recompile a watched file; on error keep the last good version running."""
         self.watch(path)  # editors that save by renaming drop the watch
-        states = [m for m in self.lab.models if m.from_file
-                  and str(Path(m.model.path).resolve()) == path]
+        states = [
+            m for m in self.lab.models if m.from_file and str(Path(m.model.path).resolve()) == path
+        ]
         if not states and path not in self.pending_files:
             return
         try:
@@ -401,8 +418,9 @@ class MainWindow(QMainWindow):
                 self.show_error(path, err)
 
     def ask_save_preset(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Save preset", "preset.toml",
-                                              "Presets (*.toml)")
+        path, _ = QFileDialog.getSaveFileName(
+            self, "Save preset", "preset.toml", "Presets (*.toml)"
+        )
         if path:
             self.save_preset(path)
             self.statusBar().showMessage(f"saved {path}", 4000)
@@ -443,8 +461,9 @@ class MainWindow(QMainWindow):
 
     # -- export -------------------------------------------------------------------------
     def ask_export(self, view: View) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export view", f"{view.name}.png",
-                                              "PNG (*.png)")
+        path, _ = QFileDialog.getSaveFileName(
+            self, "Export view", f"{view.name}.png", "PNG (*.png)"
+        )
         if path:
             self.settle()
             view.export_png(path)

@@ -40,8 +40,13 @@ def plane_lobe(f, theta_i: float) -> tuple[np.ndarray, np.ndarray]:
     return theta_o, np.asarray(f(L, V)) @ LUMA
 
 
-def fit_figure(table: merl.MerlTable, result: FitResult, out: str | Path,
-               renderer=None, thetas=(20.0, 45.0, 70.0)) -> Path:
+def fit_figure(
+    table: merl.MerlTable,
+    result: FitResult,
+    out: str | Path,
+    renderer=None,
+    thetas=(20.0, 45.0, 70.0),
+) -> Path:
     """Measured vs fitted: lobes in the plane of incidence and lit spheres."""
     from lab.render import Renderer
 
@@ -82,13 +87,19 @@ def fit_figure(table: merl.MerlTable, result: FitResult, out: str | Path,
         for k, values in enumerate(result.lobes, start=1):
             lines.append(f"lobe {k}")
             for name, value in values.items():
-                shown = ", ".join(f"{c:.3g}" for c in value) if isinstance(value, tuple) \
+                shown = (
+                    ", ".join(f"{c:.3g}" for c in value)
+                    if isinstance(value, tuple)
                     else f"{value:.4g}"
+                )
                 lines.append(f"  {name} = {shown}")
         ax.text(0.0, 1.0, "\n".join(lines), va="top", family="monospace", fontsize=8)
-    fig.suptitle(f"{result.model} ({len(result.lobes)} lobe(s)) fitted to "
-                 f"{table.path.name if table.path else 'table'}: error {result.error:.4g} "
-                 f"({result.metric})", fontsize=11)
+    fig.suptitle(
+        f"{result.model} ({len(result.lobes)} lobe(s)) fitted to "
+        f"{table.path.name if table.path else 'table'}: error {result.error:.4g} "
+        f"({result.metric})",
+        fontsize=11,
+    )
     fig.tight_layout()
     fig.savefig(out)
     plt.close(fig)
@@ -125,16 +136,19 @@ def sh_figure(lobe_fn, theta_i: float, orders, out: str | Path, title: str) -> t
     return Path(out), rows
 
 
-def filter_figure(table: merl.MerlTable, out: str | Path, renderer=None, size: int = 384,
-                  light=(45.0, 0.0)) -> Path:
+def filter_figure(
+    table: merl.MerlTable, out: str | Path, renderer=None, size: int = 384, light=(45.0, 0.0)
+) -> Path:
     """The measured sphere with nearest and linear lookup side by side, plus a zoom."""
     from lab.render import Renderer
 
     plt = _pyplot()
     renderer = renderer or Renderer()
     model = measured_model(table)
-    images = [renderer.sphere(model, {"interpolation": f}, light, size=size)
-              for f in ("nearest", "linear")]
+    images = [
+        renderer.sphere(model, {"interpolation": f}, light, size=size)
+        for f in ("nearest", "linear")
+    ]
     peak = float(np.percentile(images[1][..., :3], 99.5))
     fig, axes = plt.subplots(1, 2, figsize=(9, 4.6), dpi=100)
     for ax, image, name in zip(axes, images, ("nearest", "linear"), strict=True):

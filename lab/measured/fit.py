@@ -140,27 +140,49 @@ class FitResult:
 
         entries = []
         if table is not None:
-            entries.append({"model": presets.MEASURED, "table": presets.relative(table, base),
-                            "label": "measured", "color": MEASURED_COLOR, "visible": True,
-                            "values": {"interpolation": "linear", "gain": 1.0}})
+            entries.append(
+                {
+                    "model": presets.MEASURED,
+                    "table": presets.relative(table, base),
+                    "label": "measured",
+                    "color": MEASURED_COLOR,
+                    "visible": True,
+                    "values": {"interpolation": "linear", "gain": 1.0},
+                }
+            )
         many = len(self.lobes) > 1
         for k, values in enumerate(self.lobes):
             label = f"{self.model} fit" + (f", lobe {k + 1} of {len(self.lobes)}" if many else "")
-            entries.append({"model": self.model, "label": label,
-                            "color": FIT_COLORS[k % len(FIT_COLORS)], "visible": True,
-                            "values": presets.plain_values(values)})
+            entries.append(
+                {
+                    "model": self.model,
+                    "label": label,
+                    "color": FIT_COLORS[k % len(FIT_COLORS)],
+                    "visible": True,
+                    "values": presets.plain_values(values),
+                }
+            )
         source = Path(table).name if table is not None else "a table"
-        notes = (f"{self.model} fitted to {source}: {self.metric} error {self.error:.4g}"
-                 f" on {self.samples} samples")
+        notes = (
+            f"{self.model} fitted to {source}: {self.metric} error {self.error:.4g}"
+            f" on {self.samples} samples"
+        )
         if many:
-            notes += (f"; the fit is the SUM of the {len(self.lobes)} {self.model} lobes "
-                      "(the diffuse term is in lobe 1): each lobe is shown on its own")
+            notes += (
+                f"; the fit is the SUM of the {len(self.lobes)} {self.model} lobes "
+                "(the diffuse term is in lobe 1): each lobe is shown on its own"
+            )
         return {
             "title": f"{self.model} fit to {source}",
             "notes": notes,
             "views": ["sphere", "polar", "lobe3d", "sh", "slice", "albedo", "object"],
-            "settings": {"theta_i": 45.0, "phi_i": 0.0, "multiply_cos": True,
-                         "polar_log": True, "polar_cos": True},
+            "settings": {
+                "theta_i": 45.0,
+                "phi_i": 0.0,
+                "multiply_cos": True,
+                "polar_log": True,
+                "polar_cos": True,
+            },
             "model": entries,
         }
 
@@ -289,25 +311,42 @@ def fit(
                 lobe_values["f0"] = (0.5, 0.5, 0.5)
             values.append(lobe_values)
         x0 = np.clip(packing.pack(values), low + 1e-9, high - 1e-9)
-        trial = least_squares(_residuals(few), x0, bounds=(low, high), x_scale="jac",
-                              diff_step=1e-4, max_nfev=40)
+        trial = least_squares(
+            _residuals(few), x0, bounds=(low, high), x_scale="jac", diff_step=1e-4, max_nfev=40
+        )
         trials.append(trial)
     history = [float(np.sqrt(2.0 * t.cost)) for t in trials]
     x0 = min(trials, key=lambda t: t.cost).x
-    best = least_squares(_residuals(samples), x0, bounds=(low, high), x_scale="jac",
-                         diff_step=1e-4, max_nfev=max_nfev)
+    best = least_squares(
+        _residuals(samples),
+        x0,
+        bounds=(low, high),
+        x_scale="jac",
+        diff_step=1e-4,
+        max_nfev=max_nfev,
+    )
     seconds = time.perf_counter() - start
     fitted = packing.unpack(best.x)
     f = evaluate_lobes(evaluate, model, fitted, samples.L, samples.V)
     return FitResult(
-        model, fitted, fit_error(samples, f, metric), metric, seconds, calls, len(samples.f),
+        model,
+        fitted,
+        fit_error(samples, f, metric),
+        metric,
+        seconds,
+        calls,
+        len(samples.f),
         history,
     )
 
 
 def compare(
-    table: merl.MerlTable, models=FIT_MODELS, lobes: int = 1, metric: str = "log",
-    count: int = 20000, evaluate: Evaluate | None = None,
+    table: merl.MerlTable,
+    models=FIT_MODELS,
+    lobes: int = 1,
+    metric: str = "log",
+    count: int = 20000,
+    evaluate: Evaluate | None = None,
 ) -> list[FitResult]:
     """Fit several models to the same samples (the comparison of Ngan et al., Fig. 4)."""
     samples = select_samples(table, count)

@@ -37,16 +37,19 @@ class MeasuredModel(Model):
             n_h, n_d, n_p = self.table.dims
             limit = int(ctx.info.get("GL_MAX_3D_TEXTURE_SIZE", 256))
             if max(n_h, n_d, n_p) > limit:
-                raise ModelError(f"the table has {self.table.dims} bins; this OpenGL takes at "
-                                 f"most {limit} per axis of a 3D texture: resample it",
-                                 self.table.path or "table")
+                raise ModelError(
+                    f"the table has {self.table.dims} bins; this OpenGL takes at "
+                    f"most {limit} per axis of a 3D texture: resample it",
+                    self.table.path or "table",
+                )
             # Unmeasured (negative) entries become 0 here, so filtering never blends them in.
             texels = np.ascontiguousarray(np.maximum(self.table.rgb, 0.0), dtype=np.float32)
             try:
                 texture = ctx.texture3d((n_p, n_d, n_h), 3, texels.tobytes(), dtype="f4")
             except moderngl.Error as err:
-                raise ModelError(f"cannot upload the table as a texture ({err})",
-                                 self.table.path or "table") from None
+                raise ModelError(
+                    f"cannot upload the table as a texture ({err})", self.table.path or "table"
+                ) from None
             # The linear choice uses the texture unit's trilinear filter: phi_d is periodic,
             # the theta axes clamp at their edges. The nearest choice fetches texels itself.
             texture.filter = (moderngl.LINEAR, moderngl.LINEAR)

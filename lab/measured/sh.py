@@ -74,16 +74,20 @@ def odd_in_z(order: int) -> np.ndarray:
     return ((degree + np.abs(m)) % 2 == 1).astype(np.float64)
 
 
-def project(lobe: np.ndarray, grid: Grid, order: int,
-            basis: np.ndarray | None = None) -> np.ndarray:
+def project(
+    lobe: np.ndarray, grid: Grid, order: int, basis: np.ndarray | None = None
+) -> np.ndarray:
     """Coefficients ((order + 1)^2, channels) of the odd extension of `lobe` (n, channels).
 
     The lower hemisphere contributes as much as the upper one for harmonics that are odd
     in z (l + m odd) and cancels it for the others. `basis` may hold real_sh(order) on
     the grid already (it is the same for every lobe).
     """
-    Y = basis[:, : coefficient_count(order)] if basis is not None else real_sh(
-        order, grid.theta, grid.phi)
+    Y = (
+        basis[:, : coefficient_count(order)]
+        if basis is not None
+        else real_sh(order, grid.theta, grid.phi)
+    )
     return 2.0 * odd_in_z(order)[:, None] * (Y * grid.weight[:, None]).T @ lobe
 
 
@@ -129,8 +133,9 @@ def relative_error(lobe: np.ndarray, approx: np.ndarray, grid: Grid) -> float:
     return float(np.sqrt((w * (approx - lobe) ** 2).sum())) / max(norm, 1e-300)
 
 
-def cosine_lobe(f: Callable[[np.ndarray, np.ndarray], np.ndarray], theta_i_deg: float,
-                grid: Grid) -> np.ndarray:
+def cosine_lobe(
+    f: Callable[[np.ndarray, np.ndarray], np.ndarray], theta_i_deg: float, grid: Grid
+) -> np.ndarray:
     """g = f_r(w_i, w_o) cos(theta_o) (n, 3) at the grid's directions, for w_i at theta_i."""
     V = grid.directions
     t = math.radians(theta_i_deg)

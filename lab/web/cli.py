@@ -26,18 +26,27 @@ def cmd_serve(args) -> int:
     if args.dir:
         directory = Path(args.dir)
         if not (directory / "index.html").is_file():
-            raise _usage_error(f"{directory} has no index.html: give a folder written by "
-                               "'brdf-lab web-export' or 'brdf-lab slides build'")
+            raise _usage_error(
+                f"{directory} has no index.html: give a folder written by "
+                "'brdf-lab web-export' or 'brdf-lab slides build'"
+            )
     try:
         server = make_server(args.port, directory)
     except OSError as err:
-        raise _usage_error(f"cannot listen on port {args.port}: {err.strerror} "
-                           "(choose another with --port)") from None
+        raise _usage_error(
+            f"cannot listen on port {args.port}: {err.strerror} (choose another with --port)"
+        ) from None
     url = f"http://127.0.0.1:{server.server_address[1]}/"
-    print(f"serving the {'folder ' + str(directory) if directory else 'BRDF lab'} at {url}"
-          "  (Ctrl-C stops)", flush=True)
-    has_display = bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
-                       or sys.platform in ("darwin", "win32"))
+    print(
+        f"serving the {'folder ' + str(directory) if directory else 'BRDF lab'} at {url}"
+        "  (Ctrl-C stops)",
+        flush=True,
+    )
+    has_display = bool(
+        os.environ.get("DISPLAY")
+        or os.environ.get("WAYLAND_DISPLAY")
+        or sys.platform in ("darwin", "win32")
+    )
     if has_display and not args.no_browser:
         threading.Timer(0.3, webbrowser.open, [url]).start()
     try:
@@ -59,8 +68,10 @@ def cmd_export(args) -> int:
         index = export(outdir)
     except OSError as err:
         raise _usage_error(f"cannot write {outdir}: {err.strerror}") from None
-    print(f"wrote the web lab to {outdir} (open {index.name} through any static web server, "
-          f"e.g. 'brdf-lab serve --dir {outdir}')")
+    print(
+        f"wrote the web lab to {outdir} (open {index.name} through any static web server, "
+        f"e.g. 'brdf-lab serve --dir {outdir}')"
+    )
     return 0
 
 
@@ -131,6 +142,3 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     d.add_argument("deck", nargs="?", default=DEFAULT_DECK_DIR, help="the built deck folder")
     d.add_argument("-o", "--output", metavar="OUT.pdf", help="default: DECK/slides.pdf")
     d.set_defaults(func=cmd_slides_pdf)
-
-
-

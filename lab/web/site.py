@@ -44,14 +44,18 @@ class LabHandler(http.server.SimpleHTTPRequestHandler):
     Nothing is cached, so an edited model shows up on reload.
     """
 
-    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
-                      ".js": "text/javascript", ".mjs": "text/javascript",
-                      ".glsl": "text/plain; charset=utf-8", ".md": "text/plain; charset=utf-8"}
+    extensions_map = {
+        **http.server.SimpleHTTPRequestHandler.extensions_map,
+        ".js": "text/javascript",
+        ".mjs": "text/javascript",
+        ".glsl": "text/plain; charset=utf-8",
+        ".md": "text/plain; charset=utf-8",
+    }
 
     def translate_path(self, path: str) -> str:
         clean = path.split("?", 1)[0].split("#", 1)[0]
         if clean == "/shaders" or clean.startswith("/shaders/"):
-            base = super().translate_path(clean[len("/shaders"):] or "/")
+            base = super().translate_path(clean[len("/shaders") :] or "/")
             relative = Path(base).relative_to(Path(self.directory).resolve())
             return str(SHADER_DIR / relative)
         return super().translate_path(path)

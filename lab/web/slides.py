@@ -24,8 +24,9 @@ class SlidesError(RuntimeError):
 
 def _run(command: list[str], what: str, timeout: float = 300) -> str:
     try:
-        result = subprocess.run(command, cwd=SLIDES_DIR, capture_output=True, text=True,
-                                timeout=timeout)
+        result = subprocess.run(
+            command, cwd=SLIDES_DIR, capture_output=True, text=True, timeout=timeout
+        )
     except FileNotFoundError:
         raise SlidesError(f"{command[0]} is not installed: apt-get install nodejs npm") from None
     except subprocess.TimeoutExpired:
@@ -84,8 +85,10 @@ def pdf(deck: Path, output: Path, browser=None) -> Path:
         page.goto(f"{url}index.html?print-pdf", wait_until="networkidle")
         page.wait_for_function("window.Reveal && Reveal.isReady()")
         # Load every demo (reveal loads them lazily) and let each render before printing.
-        page.evaluate("document.querySelectorAll('iframe.demo').forEach(f => {"
-                      " if (!f.src) f.src = f.dataset.src; })")
+        page.evaluate(
+            "document.querySelectorAll('iframe.demo').forEach(f => {"
+            " if (!f.src) f.src = f.dataset.src; })"
+        )
         page.wait_for_function(
             "[...document.querySelectorAll('iframe.demo')].every(f => "
             "f.contentWindow && f.contentWindow.brdfLab && "
