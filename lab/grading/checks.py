@@ -103,7 +103,11 @@ def polar_angles(check: Check) -> np.ndarray:
 
 
 def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
-    """The check with random parameters, lights and directions drawn from `seed`."""
+    """The check with random parameters, lights and directions drawn from `seed`.
+
+    What the check pins down stays: its enum choices (the term under test) and colours it
+    sets to zero (terms switched off so that the one under test shows alone).
+    """
     rng = np.random.default_rng([seed, index])
     params = dict(check.params)
     for name, param in model.params.items():
@@ -112,7 +116,7 @@ def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
             value = float(
                 np.clip(value * math.exp(rng.uniform(-0.35, 0.35)), param.minimum, param.maximum)
             )
-        elif param.kind == "color":
+        elif param.kind == "color" and any(value):  # a term the check switched off stays off
             value = tuple(float(c) for c in rng.uniform(0.05, 0.9, 3))
         params[name] = value
     lights = [
