@@ -9,9 +9,9 @@
 // @include terms/distributions.glsl
 // @include terms/geometry.glsl
 // @include terms/fresnel.glsl
-// @param kd color 0.1 0.1 0.1 | diffuse albedo
+// @param kd color 0.25 0.1 0.05 | diffuse albedo
 // @param ks color 1 1 1 | specular weight
-// @param m float 0.01 1 0.3 log | RMS slope of the microfacets (roughness)
+// @param m float 0.01 1 0.15 log | RMS slope of the microfacets (roughness)
 // @param f0 color 0.04 0.04 0.04 | Fresnel reflectance at normal incidence (Schlick)
 // @param ior float 1 3 1.5 linear | index of refraction for the exact dielectric Fresnel term
 // @param distribution enum beckmann blinn gaussian | microfacet distribution D

@@ -8,9 +8,9 @@
 // @include terms/distributions.glsl
 // @include terms/geometry.glsl
 // @include terms/fresnel.glsl
-// @param kd color 0.1 0.1 0.1 | diffuse albedo
+// @param kd color 0.05 0.1 0.25 | diffuse albedo
 // @param ks color 1 1 1 | specular weight
-// @param alpha float 0.01 1 0.25 log | roughness (GGX width, alpha = slope scale)
+// @param alpha float 0.01 1 0.15 log | roughness (GGX width, alpha = slope scale)
 // @param f0 color 0.04 0.04 0.04 | Fresnel reflectance at normal incidence
 
 vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
