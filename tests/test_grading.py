@@ -73,6 +73,13 @@ BAD = {
         ["@param albedo"],
     ),
     "endless": (long_compile(), ["did not finish within"]),
+    # llvmpipe cuts loops off instead of hanging: the message must still point at the loop.
+    "runaway_loop": (
+        SOLUTION.replace(
+            BODY, "    float s = 0.0;\n    while (true) { s += 1.0; }\n    return albedo * s;"
+        ),
+        ["lambert.glsl:10:", "starts a loop", "exit condition"],
+    ),
     "symlink": (None, ["symbolic link"]),
     "absent": (None, ["file not found"]),
 }

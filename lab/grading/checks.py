@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import io
 import math
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from lab.glsl import ShaderCompileError
+from lab.glsl import ShaderCompileError, label_of
 from lab.grading.exercise import (
     Check,
     Exercise,
@@ -56,6 +57,26 @@ def failed(check: Check, message: str, status: str = "failed", **extra) -> Check
     return CheckResult(
         check.name, check.kind, check.points, status=status, message=message, **extra
     )
+
+
+LOOP = re.compile(r"\b(for|while|do)\b\s*[({]")
+
+
+def loop_hint(code: str, label: str) -> str:
+    """For a failed check: where the file loops, and what an endless loop does here.
+
+    Software rasterizers such as llvmpipe cut every loop off after 65,535 iterations, so an
+    endless loop does not hang (the time limit catches that on GPUs and softpipe): it returns
+    whatever it had, and the check sees wrong values instead.
+    """
+    for number, line in enumerate(code.splitlines(), start=1):
+        if LOOP.search(line.split("//")[0]):
+            return (
+                f" (note: {label}:{number}: this line starts a loop; if it never ends, llvmpipe "
+                "stops it after 65,535 iterations and the values come out wrong, and a GPU "
+                "would stop at the time limit: check its exit condition)"
+            )
+    return ""
 
 
 # -- inputs: direction pairs, hidden variants -----------------------------------------------
@@ -365,6 +386,13 @@ class Grader:
             return failed(check, "the shader does not compile: " + errors[0], errors=errors)
         except ModelError as err:
             return failed(check, str(err), status="error")
+        result = self.compare(check, expected, raw)
+        if not result.passed:
+            result.message += loop_hint(code, label_of(model.path))
+        return result
+
+    @staticmethod
+    def compare(check: Check, expected: np.ndarray, raw: np.ndarray) -> CheckResult:
         if check.kind == "sphere":
             return compare_image(check, expected, raw)
         if check.kind == "polar":
