@@ -221,14 +221,15 @@ def fmt_rgb(rgb) -> str:
 def compare_values(
     check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray, what: str
 ) -> CheckResult:
-    """Values within atol + rtol |expected|; failing rows listed with their directions."""
+    """Values within atol + rtol |expected|; the six rows nearest (or beyond) the tolerance
+    are kept with their directions: the failures, or for a pass the closest calls."""
     bad = bad_values(got)
     error = np.abs(np.nan_to_num(got, nan=np.inf) - expected)
     wrong = bad | (error > check.atol + check.rtol * np.abs(expected)).any(axis=-1)
     order = np.argsort(-np.where(bad, np.inf, (error / (check.atol + np.abs(expected))).max(-1)))
     rows = [
         (*(round(float(a), 1) for a in angles[i]), fmt_rgb(expected[i]), fmt_rgb(got[i]))
-        for i in order[: min(6, int(wrong.sum()))]
+        for i in order[:6]
     ]
     n, n_wrong = len(got), int(wrong.sum())
     if bad.any():
@@ -246,7 +247,13 @@ def compare_values(
             rows=rows,
         )
     return CheckResult(
-        check.name, check.kind, check.points, check.points, "passed", f"all {n} {what} match"
+        check.name,
+        check.kind,
+        check.points,
+        check.points,
+        "passed",
+        f"all {n} {what} match",
+        rows=rows,
     )
 
 

@@ -22,7 +22,7 @@ def points(value: float) -> str:
 def check_text(result: CheckResult) -> str:
     """The message of a check with its failing rows and compile errors, as plain text."""
     lines = [result.message]
-    if result.rows:
+    if result.rows and not result.passed:
         lines.append("  ".join(ROW_HEADER))
         lines += ["  ".join(str(v) for v in row) for row in result.rows]
     if len(result.errors) > 1:
@@ -55,7 +55,7 @@ def terminal(tasks: list[Task], console=None) -> None:
                 f"  {mark} {result.name:28s} {points(result.points):>4}/"
                 f"{points(result.max_points):<4} {escape(result.message)}"
             )
-            for row in result.rows[:3]:
+            for row in result.rows[:3] if not result.passed else []:
                 console.print(
                     "       "
                     + escape(", ".join(f"{h}={v}" for h, v in zip(ROW_HEADER, row, strict=True)))
@@ -201,7 +201,10 @@ def _check_html(result: CheckResult) -> str:
         body = "".join(
             "<tr>" + "".join(f"<td>{e(str(v))}</td>" for v in row) + "</tr>" for row in result.rows
         )
-        parts.append(f"<table><tr>{header}</tr>{body}</table>")
+        caption = (
+            "the rows nearest the tolerance (all within it)" if result.passed else "the worst rows"
+        )
+        parts.append(f"<table><caption>{caption}</caption><tr>{header}</tr>{body}</table>")
     parts.append("</div>")
     return "".join(parts)
 
