@@ -69,19 +69,24 @@ def parse_scene_light(text: str):
     return Light(theta, phi, rgb)
 
 
-def check_output(path: str) -> Path:
-    """A path we can write, or a UsageError saying why not."""
+def check_output(path: str, suffix: str | None = None) -> Path:
+    """A path we can write (with the given suffix, if any), or a UsageError saying why not."""
     out = Path(path)
     parent = out.parent if str(out.parent) else Path(".")
     if out.is_dir():
         raise UsageError(f"output {out} is a directory: give a file name")
+    if suffix and out.suffix.lower() != suffix:
+        raise UsageError(f"output {out} must end in {suffix} (the file is written as {suffix[1:]})")
     if not parent.is_dir():
         raise UsageError(f"cannot write {out}: folder {parent} does not exist")
+    existed = out.exists()
     try:
         with open(out, "ab"):
             pass
     except OSError as err:
         raise UsageError(f"cannot write {out}: {err.strerror}") from None
+    if not existed:
+        out.unlink()  # only a probe: a failure later must not leave an empty file behind
     return out
 
 
@@ -92,12 +97,19 @@ def load(name: str, settings: list[str]):
     return model, model.parse_settings(settings or [])
 
 
-def load_measured(name: str, table: str | None, settings: list[str]):
-    """The `measured` model for `render --table FILE.binary` (lab.measured)."""
+def load_any_model(args):
+    """The model and values of a command's MODEL, --set and --table arguments."""
+    if args.model == "measured" or args.table:
+        return load_measured(args.model, args.table, args.set, args.command)
+    return load(args.model, args.set)
+
+
+def load_measured(name: str, table: str | None, settings: list[str], command: str = "render"):
+    """The `measured` model for `render/eval measured --table FILE.binary` (lab.measured)."""
     if name != "measured":
         raise UsageError(
             f"--table is for the measured model: write "
-            f"'brdf-lab render measured --table {table}', not {name!r}"
+            f"'brdf-lab {command} measured --table {table}', not {name!r}"
         )
     if not table:
         raise UsageError(
@@ -117,12 +129,16 @@ def load_measured(name: str, table: str | None, settings: list[str]):
 # -- commands -------------------------------------------------------------------------------
 def cmd_models(args) -> int:
     from lab.glsl import label_of
-    from lab.models import load_model, model_names
+    from lab.measured.model import MODEL_FILE
+    from lab.models import load_model, model_names, parse_model
 
-    for name in model_names():
-        model = load_model(name)
+    models = [load_model(name) for name in model_names()]
+    models.append(parse_model(MODEL_FILE.read_text(encoding="utf-8"), MODEL_FILE))
+    for model in models:
         kind = "  (delta)" if model.delta else ""
-        print(f"{name}{kind}  -  {model.title}\n  file: {label_of(model.path)}")
+        if model.name == "measured":
+            kind = "  (its data: --table FILE.binary)"
+        print(f"{model.name}{kind}  -  {model.title}\n  file: {label_of(model.path)}")
         for p in model.params.values():
             if p.kind == "float":
                 spec = f"float [{p.minimum:g}, {p.maximum:g}] default {p.default:g} ({p.scale})"
@@ -140,17 +156,14 @@ def cmd_render(args) -> int:
     from lab import plots
     from lab.render import MAX_LIGHTS, Renderer
 
-    if args.model == "measured" or args.table:
-        model, values = load_measured(args.model, args.table, args.set)
-    else:
-        model, values = load(args.model, args.set)
+    model, values = load_any_model(args)
     lights = [parse_scene_light(text) for text in args.light or ["45,0"]]
     if len(lights) > MAX_LIGHTS:
         raise UsageError(f"at most {MAX_LIGHTS} --light options")
     ambient = parse_rgb(args.ambient, "--ambient")
     if not 8 <= args.size <= MAX_SIZE:
         raise UsageError(f"--size {args.size} is outside 8..{MAX_SIZE} pixels")
-    out = check_output(args.output)
+    out = check_output(args.output, ".png")
     plots.save_render(
         Renderer(),
         args.view,
@@ -206,7 +219,7 @@ def read_pairs(path: str):
 def cmd_eval(args) -> int:
     import numpy as np
 
-    model, values = load(args.model, args.set)
+    model, values = load_any_model(args)
     angles = read_pairs(args.input)
     out = check_output(args.output) if args.output else None
     if model.delta:
@@ -297,7 +310,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="ambient light L_a (sphere view; the Phong illumination model reflects ka L_a)",
     )
     p.add_argument("--view", choices=VIEWS, default="sphere")
-    p.add_argument("--size", type=int, default=512, help="image size in pixels")
+    p.add_argument(
+        "--size",
+        type=int,
+        default=512,
+        help="image size in pixels (the sphere's side; a plot's width, at least 320)",
+    )
     p.add_argument("--exposure", type=float, default=0.0, help="exposure in stops (sphere)")
     p.add_argument("--table", metavar="FILE.binary", help="the MERL table of the 'measured' model")
     p.add_argument("-o", "--output", required=True, metavar="OUT.png")
@@ -309,6 +327,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--in", dest="input", required=True, metavar="PAIRS.csv")
     p.add_argument("--out", dest="output", metavar="VALUES.csv")
     p.add_argument("--cpu", action="store_true", help="use the numpy reference, not the GPU")
+    p.add_argument("--table", metavar="FILE.binary", help="the data of the measured model")
     p.set_defaults(func=cmd_eval)
 
     p = sub.add_parser("figures", help="render the lecture's figures from the real shaders")
@@ -346,7 +365,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"brdf-lab: error: {err}", file=sys.stderr)
         return 2
     except ShaderCompileError as err:
-        print(f"brdf-lab: error: the shader does not compile:\n{err}", file=sys.stderr)
+        first, *more = str(err).splitlines() or [""]
+        print(f"brdf-lab: error: the shader does not compile: {first}", file=sys.stderr)
+        for line in more:
+            print(f"  {line}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130

@@ -161,7 +161,8 @@ def save_view(
     else:
         raise ValueError(f"unknown view {view!r}")
     fig.tight_layout()
-    fig.savefig(out)
+    # The figure is 6 inches wide: this dpi makes it `size` pixels (320 at least, to stay legible).
+    fig.savefig(out, dpi=max(size, 320) / fig.get_size_inches()[0])
     plt.close(fig)
 
 

@@ -209,6 +209,8 @@ BAD_INPUTS = [
     (["render", "phong", "-o", "{tmp}/missing/x.png"], "does not exist"),
     (["render", "phong", "-o", "{tmp}"], "is a directory"),
     (["render", "phong", "--size", "0", "-o", "{tmp}/x.png"], "--size 0 is outside"),
+    (["render", "phong", "-o", "{tmp}/x.txt"], "must end in .png"),
+    (["eval", "phong", "--table", "{tmp}/t.binary", "--in", "{tmp}/text.csv"], "measured model"),
     (["render", "phong", "--size", "100000", "-o", "{tmp}/x.png"], "--size 100000 is outside"),
     (["eval", "phong", "--in", "{tmp}/nope.csv"], "cannot read"),
     (["eval", "phong", "--in", "{tmp}/cols.csv"], "cols.csv:1: missing column(s) phi_o"),
@@ -301,3 +303,20 @@ def test_render_several_lights_and_ambient(tmp_path):
         R = 2 * (N @ L) * N - L
         expected += np.array(rgb) * (0.1 * (N @ L) + 0.3 * max(R @ V, 0.0) ** 8)
     assert np.abs(centre - to_srgb8(expected).astype(int)).max() <= 1
+
+
+def test_plot_views_honour_size(tmp_path):
+    out = tmp_path / "polar.png"
+    assert main(["render", "ggx", "--view", "polar", "--size", "800", "-o", str(out)]) == 0
+    assert Image.open(out).size[0] == 800
+
+
+def test_eval_measured_table(tmp_path):
+    """`eval measured --table` looks the table up: a tabulated Lambert gives albedo / pi."""
+    table = tmp_path / "lambert.binary"
+    assert main(["tabulate", "lambert", "--set", "albedo=0.6", "-o", str(table)]) == 0
+    pairs = write_pairs(tmp_path / "p.csv", [[30, 0, 40, 100], [10, 50, 70, 300]])
+    out = tmp_path / "v.csv"
+    args = ["eval", "measured", "--table", str(table), "--in", str(pairs), "--out", str(out)]
+    assert main(args) == 0
+    np.testing.assert_allclose(read_values(out), np.full((2, 3), 0.6 / np.pi), rtol=1e-5)

@@ -35,12 +35,10 @@ def locate(student: Path, exercise) -> Path:
 
 
 def _output(path: str | None) -> Path | None:
-    if path is None:
-        return None
-    out = Path(path)
-    if out.is_dir() or not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise UsageError(f"cannot write {out}: give a file in an existing folder")
-    return out
+    """A result file we can write, checked before any grading starts."""
+    from lab.cli import check_output
+
+    return None if path is None else check_output(path)
 
 
 def cmd_grade(args) -> int:

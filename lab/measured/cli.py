@@ -69,8 +69,10 @@ def cmd_fit(args) -> int:
     table = _read(args.table)
     models = list(fitting.FIT_MODELS) if args.compare else (args.model or ["cook_torrance"])
     outdir = Path(args.outdir)
-    if not outdir.is_dir():
-        raise _usage(f"--outdir {outdir} is not a folder")
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise _usage(f"--outdir {outdir}: cannot create the folder ({err.strerror})") from None
     evaluate = fitting.gpu_evaluator() if args.gpu else fitting.cpu_evaluate
     samples = fitting.select_samples(table, args.samples)
     stem = Path(args.table).stem
@@ -138,7 +140,7 @@ def cmd_sh(args) -> int:
         title = model.name
     from lab.cli import check_output
 
-    out = check_output(args.output)
+    out = check_output(args.output, ".png")
     path, rows = sh_figure(lobe_fn, args.theta_i, orders, out, title)
     print(f"{'order':>5s} {'coefficients':>12s} {'relative L2 error':>18s}")
     for order, count, error in rows:
@@ -156,7 +158,7 @@ def cmd_render_measured(args) -> int:
 
     table = _read(args.table)
     theta, phi = parse_light(args.light)
-    out = check_output(args.output)
+    out = check_output(args.output, ".png")
     renderer = Renderer()
     if args.interpolation == "both":
         filter_figure(table, out, renderer, light=(theta, phi))
