@@ -108,6 +108,7 @@ class View(QWidget):
         super().__init__()
         self.lab, self.renderer = lab, renderer
         self.cache: dict[int, tuple[tuple, object]] = {}
+        self.toned: dict[int, tuple] = {}  # (image, (exposure, gamma), QImage): tone-map once
         self.layout_ = QVBoxLayout(self)
         self.layout_.setContentsMargins(2, 2, 2, 2)
         self.tools = QHBoxLayout()
@@ -173,6 +174,14 @@ class View(QWidget):
         request = getattr(self.window(), "request", None)
         if request is not None:
             request()  # views drawn at their size on screen check their inputs again
+
+    def toned_image(self, state: ModelState, image: np.ndarray, tone: tuple) -> QImage:
+        """`image` tone-mapped for display, computed again only when it or the tone changes."""
+        known = self.toned.get(id(state))
+        if known is None or known[0] is not image or known[1] != tone:
+            known = (image, tone, tonemap(image, *tone))
+            self.toned[id(state)] = known
+        return known[2]
 
     def cached(self, state: ModelState, key: tuple, compute):
         """compute() unless the model's inputs are the same as last time."""
@@ -294,7 +303,6 @@ class SphereView(View):
         self.canvas = ImageRow(self.drag_light)
         self.layout_.addWidget(self.canvas, 1)
         self.floats: list[tuple[ModelState, np.ndarray]] = []
-        self.toned: dict[int, tuple] = {}  # (image, (exposure, gamma), QImage): tone-map once
 
     def drag_light(self, x: float, y: float) -> None:
         r = math.hypot(x, y)
@@ -351,11 +359,7 @@ class SphereView(View):
             if image is None:
                 continue
             self.floats.append((state, image))
-            known = self.toned.get(id(state))
-            if known is None or known[0] is not image or known[1] != tone:
-                known = (image, tone, tonemap(image, *tone))
-                self.toned[id(state)] = known
-            images.append((known[2], state.label, state.color))
+            images.append((self.toned_image(state, image, tone), state.label, state.color))
         self.canvas.images = images
         self.canvas.update()
         return coarse
@@ -805,7 +809,6 @@ class SliceView(View):
         self.canvas = SliceCanvas()
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, np.ndarray]] = []
-        self.toned: dict[int, tuple] = {}
 
     def axes(self) -> list[tuple[tuple[float, float], tuple[float, float], QRect]]:
         """Each plot's (theta_h range, theta_d range, rectangle on screen)."""
@@ -850,11 +853,7 @@ class SliceView(View):
             if image is None:
                 continue
             self.data.append((state, image))
-            known = self.toned.get(id(state))
-            if known is None or known[0] is not image or known[1] != tone:
-                known = (image, tone, tonemap(image, *tone))
-                self.toned[id(state)] = known
-            images.append((known[2], state.label, state.color))
+            images.append((self.toned_image(state, image, tone), state.label, state.color))
         self.canvas.images = images
         self.canvas.update()
         return coarse
