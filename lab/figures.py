@@ -60,7 +60,7 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     plots.style_polar(ax, theta_i, "f_r cos θo (each scaled to its peak)")
     path = outdir / "off_specular_peak.png"
     fig.tight_layout()
-    fig.savefig(path)
+    fig.savefig(path, bbox_inches="tight")
     paths.append(path)
     # Sun and moon: lit from the eye, Lambert darkens to the rim, Lommel-Seeliger stays flat.
     # The moon is exposed 3 stops up so both discs have the same brightness at the centre.

@@ -65,16 +65,27 @@ def style_polar(ax, theta_i: float, what: str) -> None:
     ax.set_thetamin(-90)
     ax.set_thetamax(90)
     top = ax.get_ylim()[1]
-    for angle, name, style in (
-        (0.0, "normal", ":"),
-        (-theta_i, "incident", "--"),
-        (theta_i, "mirror", "-."),
-    ):
+    marks = [(0.0, "normal", ":"), (-theta_i, "incident", "--"), (theta_i, "mirror", "-.")]
+    if theta_i < 8:  # the three directions (nearly) coincide: one label says so
+        marks = [(0.0, "normal = incident = mirror" if theta_i == 0 else "normal", ":")]
+    for angle, _, style in marks:
         ax.plot([np.radians(angle)] * 2, [0, top], style, color="grey", lw=1)
-        ax.text(np.radians(angle), top * 1.05, name, ha="center", fontsize=8, color="grey")
+    for angle, name, _ in marks:
+        # Inside the rim, so the labels never sit on the angle ticks outside it.
+        ax.text(
+            np.radians(angle),
+            top * 0.9,
+            name,
+            ha="center",
+            va="center",
+            fontsize=11,
+            color="dimgrey",
+            bbox={"facecolor": "white", "edgecolor": "none", "pad": 1},
+        )
     ax.set_ylim(0, top)
-    ax.set_title(f"{what} in the plane of incidence, θi = {theta_i:g}°", fontsize=10)
-    ax.legend(loc="lower left", fontsize=8, bbox_to_anchor=(-0.1, -0.15))
+    ax.tick_params(labelsize=10)
+    ax.set_title(f"{what} in the plane of incidence, θi = {theta_i:g}°", fontsize=12)
+    ax.legend(loc="upper left", fontsize=11, bbox_to_anchor=(-0.05, 0.05), ncol=2, frameon=False)
 
 
 def save_render(
