@@ -353,3 +353,48 @@ def test_tonemap_matches_the_formula():
     alpha = image[..., 3:4]
     expected = (rgb * alpha + np.array(BACKGROUND) / 255 * (1 - alpha)) * 255
     assert np.abs(got - expected).max() <= 1.0  # NaN, +inf and -inf pixels included
+
+
+def test_presets_reset_the_settings_they_do_not_name(qtbot, window):
+    beckmann, off_specular = (shipped_presets()[i] for i in (2, 3))
+    assert "polar_cos" not in beckmann.read_text() and "polar_cos = true" in off_specular.read_text()
+
+    def snapshot():
+        settle(qtbot, window)
+        spheres = [img.copy() for _, img in window.view("sphere").floats]
+        polar = [p.values.copy() for _, p in window.view("polar").data]
+        return dict(window.lab.settings.values), spheres, polar
+
+    window.load_preset(beckmann)
+    first = snapshot()
+    window.load_preset(off_specular)
+    assert window.lab.settings["polar_cos"]
+    window.load_preset(beckmann)
+    again = snapshot()
+    assert again[0] == first[0] and not again[0]["polar_cos"]
+    for a, b in zip(first[1] + first[2], again[1] + again[2], strict=True):
+        assert np.array_equal(a, b)
+
+
+def test_export_of_a_hidden_polar_view_is_up_to_date(qtbot, window, app_renderer, tmp_path):
+    state = window.lab.add(load_model("phong"), {"ke": 10.0})
+    settle(qtbot, window)
+    window.docks["polar"].hide()
+    state.set_value("ke", 200.0)
+    window.lab.settings.set("theta_i", 50.0)
+    settle(qtbot, window)
+    window.view("polar").export_csv(tmp_path / "polar.csv")
+    table = np.loadtxt(tmp_path / "polar.csv", delimiter=",", skiprows=1)
+    expected = app_renderer.polar(state.model, state.values, 50.0, 0.0)
+    assert np.allclose(table[:, 1:4], expected.values, rtol=1e-5, atol=1e-6)
+
+
+def test_error_for_a_file_that_never_compiled(qtbot, window, tmp_path):
+    path = tmp_path / "broken.glsl"
+    path.write_text((MODEL_DIR / "phong.glsl").read_text().replace("vec3 R =", "vec3 R = = "))
+    assert window.open_file(path) is None
+    text = window.error_text()
+    assert "broken.glsl" in text and "was not added" in text
+    assert "last good version" not in text
+    window.step_preset(to=0)
+    assert window.error_dock.isHidden()

@@ -229,7 +229,9 @@ class LabState(QObject):
         ]
         settings = presets.check_settings(data.get("settings", {}), where)
         self.clear()
-        for name, value in settings.items():
+        # A preset names only some settings; the rest go back to their defaults so nothing
+        # leaks from the previous preset.
+        for name, value in {**presets.SETTINGS, **settings}.items():
             self.settings.set(name, value)
         for model, values, from_file, entry in loaded:
             state = self.add(

@@ -222,7 +222,15 @@ class View(QWidget):
         size = sizes[0] if fast or have not in sizes else sizes[sizes.index(have) + 1]
         return self.cached(state, (*key, size), lambda: compute(size)), size != sizes[-1]
 
+    def up_to_date(self) -> None:
+        """Draw at full quality now: a hidden view is not redrawn, and exports must not
+        save what it showed before the last change."""
+        for _ in range(8):  # the refinement steps of the finest view
+            if not self.redraw(fast=False):
+                break
+
     def export_png(self, path: str | Path) -> None:
+        self.up_to_date()
         self.grab().save(str(path))
 
 
@@ -489,6 +497,7 @@ class PolarView(View):
 
     def export_csv(self, path: str | Path) -> None:
         """theta_o and f_r (r, g, b) of every plotted model, one column set per model."""
+        self.up_to_date()
         with open(path, "w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle)
             quantity = "fr_cos" if self.lab.settings["polar_cos"] else "fr"

@@ -31,6 +31,8 @@ from lab.models import Model, ModelError, load_model, model_names
 from lab.presets import dump_toml, load_any, read_preset, shipped_presets
 
 REFINE_DELAY_MS = 150
+QWIDGETSIZE_MAX = 16777215  # Qt's "no maximum" for a widget's size
+NOT_YET = "it was not added: it is added when a saved version compiles"
 # The views in the window: the core ones and the spherical-harmonics view (lab.measured).
 ALL_VIEWS = [*VIEW_CLASSES, SHView]
 
@@ -150,11 +152,19 @@ class MainWindow(QMainWindow):
         self.splitDockWidget(self.docks["slice"], self.docks["albedo"], Qt.Orientation.Horizontal)
         self.splitDockWidget(self.docks["albedo"], self.docks["object"], Qt.Orientation.Horizontal)
 
+    def controls_cap(self) -> int:
+        """The widest the controls panel may be: a fifth of the screen when presenting."""
+        if not self.presenter:
+            return QWIDGETSIZE_MAX
+        return max(320, int(0.22 * max(self.width(), 800)))
+
     def fit_docks(self) -> None:
         """Dock sizes for the window's size: controls 27 % of the width (at least 300 px),
         the spheres' row a quarter of the height, the rest to the plots."""
         width, height = max(self.width(), 800), max(self.height(), 600)
-        left = max(300, int(0.27 * width))
+        # Presenter mode: the views get the room, the (larger) controls a narrow column.
+        left = min(max(300, int(0.27 * width)), self.controls_cap())
+        self.controls_dock.setMaximumWidth(self.controls_cap())
         # Qt moves a separator only when the docks on both sides of it are named.
         self.resizeDocks(
             [self.controls_dock, self.docks["sphere"]],
@@ -302,9 +312,8 @@ class MainWindow(QMainWindow):
         self.renderer.sphere(model, model.defaults(), (s["theta_i"], s["phi_i"]), size=8)
         self.renderer.polar(model, model.defaults(), s["theta_i"], s["phi_i"])
 
-    def show_error(
-        self, path: str, err: Exception, outcome: str = "the last good version keeps running"
-    ) -> None:
+    def show_error(self, path: str, err: Exception, outcome: str | None = None) -> None:
+        outcome = outcome or "the last good version keeps running"
         text = str(err)
         self.errors.setPlainText(f"{path}: {outcome}.\n{text}")
         self.error_dock.show()
@@ -324,7 +333,7 @@ class MainWindow(QMainWindow):
             self.check(model)
         except (ModelError, ShaderCompileError) as err:
             self.pending_files.add(path)
-            self.show_error(path, err)
+            self.show_error(path, err, NOT_YET)
             return None
         self.pending_files.discard(path)
         self.statusBar().showMessage(f"opened {path} (watched for changes)", 5000)
@@ -357,7 +366,8 @@ class MainWindow(QMainWindow):
         except (ModelError, ShaderCompileError) as err:
             for state in states:
                 state.error = str(err)
-            self.show_error(path, err)
+            # A file that never compiled has no last good version to keep running.
+            self.show_error(path, err, None if states else NOT_YET)
             self.lab.changed.emit()
             self.file_reloaded.emit(path)
             return
@@ -403,6 +413,9 @@ class MainWindow(QMainWindow):
         for state in self.lab.models:
             if state.from_file:
                 self.watch(str(Path(state.model.path).resolve()))
+        if not any(m.error for m in self.lab.models):
+            self.errors.clear()  # the previous state's errors do not belong to this one
+            self.error_dock.hide()
         title = str(data.get("title", path.stem))
         self.setWindowTitle(f"brdf-lab — {title}")
         notes = str(data.get("notes", ""))
@@ -455,6 +468,7 @@ class MainWindow(QMainWindow):
             self.showFullScreen()
         else:
             self.showNormal()
+        self.controls_dock.setMaximumWidth(self.controls_cap())
         # The new fonts and the new window size want the docks laid out again.
         QTimer.singleShot(50, self.fit_docks)
         self.request()
