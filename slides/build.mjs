@@ -117,6 +117,16 @@ ${sections.join("\n")}
 <script>
   Reveal.initialize({ hash: true, width: 1280, height: 800, margin: 0.03, center: false,
     transition: "none", viewDistance: 2, pdfMaxPagesPerSlide: 1 });
+  // A live demo keeps the keyboard focus after a click; it passes the slide keys up here.
+  addEventListener("message", (e) => {
+    const demo = [...document.querySelectorAll("iframe.demo")].some((f) => f.contentWindow === e.source);
+    if (!demo || !e.data || e.data.brdfLab !== "slide") return;
+    // The frame leaves with its slide: give the keyboard back to the deck first.
+    document.activeElement?.blur();
+    window.focus();
+    if (e.data.step === "next") Reveal.next();
+    else if (e.data.step === "prev") Reveal.prev();
+  });
 </script>
 </body>
 </html>

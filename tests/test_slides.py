@@ -173,3 +173,22 @@ def test_pdf(deck, deck_page, tmp_path):
     assert data.startswith(b"%PDF")
     pages = len(re.findall(rb"/Type\s*/Page[^s]", data))
     assert pages == deck_info(deck)["count"]
+
+
+def test_slide_keys_work_after_using_a_demo(deck, deck_page):
+    """A click on a demo's slider gives the frame the focus; a clicker's PageDown and PageUp
+    still move between slides (the frame passes them to the deck)."""
+    from lab.web.slides import deck_info
+
+    first = deck_info(deck)["demos"][0]["slide"]
+    deck_page.evaluate(f"Reveal.slide({first})")
+    frame_element = deck_page.wait_for_selector("section.present iframe.demo")
+    frame = frame_element.content_frame()
+    frame.wait_for_function("window.brdfLab && brdfLab.state.firstRenderMs !== null")
+    frame.locator("input[type=range]").first.click()
+    assert frame.evaluate("document.hasFocus()")
+    deck_page.keyboard.press("PageDown")
+    deck_page.wait_for_function(f"Reveal.getIndices().h === {first + 1}", timeout=5_000)
+    deck_page.keyboard.press("PageUp")  # the focus stays in the (now hidden) frame
+    deck_page.wait_for_function(f"Reveal.getIndices().h === {first}", timeout=5_000)
+    assert deck_page.errors == []

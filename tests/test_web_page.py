@@ -316,3 +316,15 @@ def test_embed_in_a_small_frame(browser):
         assert page.errors == []
     finally:
         page.page.close()
+
+
+def test_too_many_models_are_reported(browser):
+    """A link with more models than fit names the ones left out and turns "+ model" off."""
+    page = Page(browser, "&".join(f"model={m}" for m in ["lambert"] * 6 + ["phong", "ward"]))
+    try:
+        assert page.js("brdfLab.state.panels.length") == 6
+        assert "at most 6 models side by side; left out: phong, ward" in page.js("brdfLab.notes()")
+        assert page.js("document.querySelector('#add-model').disabled")
+        assert page.errors == []
+    finally:
+        page.page.close()

@@ -536,9 +536,14 @@ function drawPolar(canvas, values, thetaI, spike) {
   ray(-thetaI, radius, "#e0a030", []); // toward the light
   ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
   // Near normal incidence L and R would sit on N: then only L and R, either side.
-  if (thetaI >= 12) label("N", 0, radius + 0.7 * font, "#aaa");
-  label("L", -thetaI, radius + 0.8 * font, "#e0a030", thetaI < 12 ? -0.5 * font : 0);
-  label("R", thetaI, radius + 0.8 * font, "#aaa", thetaI < 12 ? 0.5 * font : 0);
+  // Near normal incidence L and R sit on N: one merged label instead of three on top of
+  // each other; a little further out, L and R pushed apart either side.
+  if (thetaI < 4) label("N = L = R", 0, radius + 0.7 * font, "#e0a030");
+  else {
+    if (thetaI >= 12) label("N", 0, radius + 0.7 * font, "#aaa");
+    label("L", -thetaI, radius + 0.8 * font, "#e0a030", thetaI < 12 ? -0.6 * font : 0);
+    label("R", thetaI, radius + 0.8 * font, "#aaa", thetaI < 12 ? 0.6 * font : 0);
+  }
   const lum = [];
   let peak = 0;
   for (let i = 0; i < POLAR_STEPS; i++) {
@@ -552,12 +557,12 @@ function drawPolar(canvas, values, thetaI, spike) {
   // is its reflectance (the whole circle = all the light).
   const spikeLum = spike ? luma(...spike) : 0;
   const scale = spike ? Math.max(peak, 1) : peak;
-  const what = lab.cosWeighted ? "f_r cos θo" : "f_r";
+  const what = lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ";
   ctx.fillStyle = "#bbb";
   const title = `${what}, plane of incidence${lab.lights.length > 1 ? " of light 1" : ""}`;
   ctx.fillText(ctx.measureText(title).width < w - 4 ? title : `${what}, light 1`, 2, font);
   const circle = spike && peak < 1 ? "1 (all the light)" : `${formatG(round(peak))} sr⁻¹`;
-  ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}` : "f_r = 0 in this plane", 2, 2.2 * font);
+  ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}` : "fᵣ = 0 in this plane", 2, 2.2 * font);
   if (peak > 0) {
     ctx.strokeStyle = "#4aa3ff";
     ctx.fillStyle = "#4aa3ff33";
@@ -701,11 +706,20 @@ function fitEmbed() {
   }
 }
 
+/** "+ model" is off once the page shows as many models as it can. */
+function showAddModel() {
+  const button = $("#add-model");
+  button.disabled = lab.panels.length >= MAX_PANELS;
+  button.title = button.disabled ? `at most ${MAX_PANELS} models side by side`
+    : "show another model beside the others";
+}
+
 function addPanel(name, values) {
   if (lab.panels.length >= MAX_PANELS) return null;
   const panel = new Panel(name, values);
   lab.panels.push(panel);
   $("#panels").append(panel.root);
+  showAddModel();
   fitEmbed();
   return panel;
 }
@@ -714,6 +728,7 @@ function removePanel(panel) {
   if (lab.panels.length <= 1) return;
   lab.panels.splice(lab.panels.indexOf(panel), 1);
   panel.root.remove();
+  showAddModel();
   fitEmbed();
   scheduleRender();
 }
@@ -772,7 +787,12 @@ function readHash() {
     panel.values = checked;
   }
   if (lights.length) lab.lights = lights;
-  return panels.filter((p) => p.name);
+  const kept = panels.filter((p) => p.name);
+  if (kept.length > MAX_PANELS) {
+    const left = kept.slice(MAX_PANELS).map((p) => p.name);
+    lab.notes.push(`at most ${MAX_PANELS} models side by side; left out: ${left.join(", ")}`);
+  }
+  return kept.slice(0, MAX_PANELS);
 }
 
 function writeHash() {
@@ -826,8 +846,30 @@ async function load() {
   for (const name of manifest.models) addModelText(`shaders/brdfs/${name}.glsl`, lab.files[`brdfs/${name}.glsl`], name);
 }
 
+// Keys a presenter's clicker or keyboard sends to move between slides.
+const SLIDE_KEYS = { PageDown: "next", PageUp: "prev", ArrowRight: "next", ArrowLeft: "prev",
+  " ": "next" };
+
+/** Embedded in a slide, the frame keeps the keyboard focus after a click on a control: pass
+ * the slide keys on to the deck, unless a text box or slider needs the key itself. */
+function forwardSlideKeys() {
+  addEventListener("keydown", (e) => {
+    const step = SLIDE_KEYS[e.key];
+    if (!step || e.altKey || e.ctrlKey || e.metaKey || window.parent === window) return;
+    const target = e.target;
+    const typing = target instanceof HTMLInputElement && target.type === "text";
+    const slider = target instanceof HTMLInputElement && target.type === "range";
+    const owned = typing || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement ||
+      (slider && e.key.startsWith("Arrow")) || (e.key === " " && target instanceof HTMLButtonElement);
+    if (owned) return;
+    e.preventDefault();
+    window.parent.postMessage({ brdfLab: "slide", step }, "*");
+  });
+}
+
 function buildPage() {
   document.body.classList.toggle("embed", lab.embed);
+  if (lab.embed) forwardSlideKeys();
   $("#add-light").addEventListener("click", () => addLight());
   showAmbient();
   $("#ambient").addEventListener("input", (e) => {
