@@ -10,7 +10,10 @@ import sys
 import traceback
 from pathlib import Path
 
+from lab.errors import UsageError, check_output, parse_light, parse_pair, parse_rgb
 from lab.models import MODEL_DIR, ModelError
+
+__all__ = ["UsageError", "check_output", "main", "parse_light", "parse_pair", "parse_rgb"]
 
 # Feature packages add their own sub-commands through a `register(subparsers)` function.
 FEATURE_CLIS = ["lab.app.cli", "lab.grading.cli", "lab.web.cli", "lab.measured.cli"]
@@ -18,43 +21,10 @@ VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
 MAX_SIZE = 4096  # pixels per side: a 4096² float image is 256 MiB already
 
 
-class UsageError(Exception):
-    """Bad input from the user: printed as one line, exit status 2."""
-
-
 def feature_present(module_name: str) -> bool:
     """Whether a feature package's CLI module is part of this checkout."""
     relative = Path(*module_name.split(".")[1:]).with_suffix(".py")
     return (Path(__file__).parent / relative).is_file()
-
-
-def parse_pair(text: str, what: str) -> tuple[float, float]:
-    try:
-        first, second = (float(x) for x in text.split(","))
-    except ValueError:
-        raise UsageError(
-            f"{what} {text!r} is malformed: write THETA,PHI in degrees, e.g. 30,0"
-        ) from None
-    return first, second
-
-
-def parse_light(text: str) -> tuple[float, float]:
-    theta, phi = parse_pair(text, "--light")
-    if not 0.0 <= theta <= 90.0:
-        raise UsageError(f"--light theta {theta:g} is outside 0..90 degrees")
-    return theta, phi
-
-
-def parse_rgb(text: str, what: str) -> tuple[float, float, float]:
-    try:
-        numbers = [float(x) for x in text.split(",")]
-    except ValueError:
-        numbers = []
-    if len(numbers) == 1:
-        numbers *= 3
-    if len(numbers) != 3 or min(numbers) < 0:
-        raise UsageError(f"{what} {text!r} is malformed: write R,G,B (or one grey value), >= 0")
-    return tuple(numbers)
 
 
 def parse_scene_light(text: str):
@@ -69,39 +39,13 @@ def parse_scene_light(text: str):
     return Light(theta, phi, rgb)
 
 
-def check_output(path: str, suffix: str | None = None) -> Path:
-    """A path we can write (with the given suffix, if any), or a UsageError saying why not."""
-    out = Path(path)
-    parent = out.parent if str(out.parent) else Path(".")
-    if out.is_dir():
-        raise UsageError(f"output {out} is a directory: give a file name")
-    if suffix and out.suffix.lower() != suffix:
-        raise UsageError(f"output {out} must end in {suffix} (the file is written as {suffix[1:]})")
-    if not parent.is_dir():
-        raise UsageError(f"cannot write {out}: folder {parent} does not exist")
-    existed = out.exists()
-    try:
-        with open(out, "ab"):
-            pass
-    except OSError as err:
-        raise UsageError(f"cannot write {out}: {err.strerror}") from None
-    if not existed:
-        out.unlink()  # only a probe: a failure later must not leave an empty file behind
-    return out
-
-
-def load(name: str, settings: list[str]):
-    from lab.models import load_model
-
-    model = load_model(name)
-    return model, model.parse_settings(settings or [])
-
-
 def load_any_model(args):
     """The model and values of a command's MODEL, --set and --table arguments."""
     if args.model == "measured" or args.table:
         return load_measured(args.model, args.table, args.set, args.command)
-    return load(args.model, args.set)
+    from lab.sources import open_with_settings
+
+    return open_with_settings(args.model, args.set)
 
 
 def load_measured(name: str, table: str | None, settings: list[str], command: str = "render"):
@@ -120,9 +64,9 @@ def load_measured(name: str, table: str | None, settings: list[str], command: st
         raise UsageError(
             f"{table}: no such file (make one with 'brdf-lab tabulate MODEL -o {table}')"
         )
-    from lab.measured.model import measured_model
+    from lab.sources import open_model
 
-    model = measured_model(table)
+    model = open_model("measured", table)
     return model, model.parse_settings(settings or [])
 
 

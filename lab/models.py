@@ -308,12 +308,12 @@ def model_names() -> list[str]:
 
 
 def load_model(name_or_path: str | Path) -> Model:
-    """A library model by name, or any model file by path (.glsl, or BRDF Explorer's .brdf)."""
-    candidate = Path(name_or_path)
-    if candidate.suffix == ".brdf":
-        from lab.brdf_explorer import read_brdf  # BRDF Explorer's file format
+    """A library model by name, or a .glsl model file by path.
 
-        return read_brdf(candidate)
+    Front ends open models with `lab.sources.open_model`, which also reads BRDF
+    Explorer's .brdf files and measured tables.
+    """
+    candidate = Path(name_or_path)
     if candidate.suffix == ".glsl" or candidate.exists():
         path = candidate
     else:

@@ -29,7 +29,8 @@ import os
 import sys
 from pathlib import Path
 
-from lab.models import Model, ModelError, Value, load_model
+from lab.models import Model, ModelError, Value
+from lab.sources import MEASURED, open_model
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -37,7 +38,6 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 PRESET_DIR = Path(__file__).parent / "app" / "presets"
-MEASURED = "measured"  # the model name of tabulated BRDFs (lab.measured)
 MODEL_FILES = (".glsl", ".brdf")
 
 # Light and view settings a preset may hold, with their defaults (and so their types).
@@ -66,18 +66,9 @@ SETTINGS: dict[str, Value] = {
 def load_any(path_or_name: str | Path) -> Model:
     """A library model by name, a .glsl model file, a BRDF Explorer .brdf file or a
     MERL .binary table (as the `measured` model)."""
-    text = str(path_or_name)
-    if text.endswith(".brdf"):
-        from lab.brdf_explorer import read_brdf
-
-        return read_brdf(path_or_name)
-    if text.endswith(".binary"):
-        from lab.measured.model import measured_model
-
-        return measured_model(path_or_name)
-    if text == MEASURED:
+    if str(path_or_name) == MEASURED:
         raise ModelError("the measured model needs a table: open a MERL .binary file")
-    return load_model(path_or_name)
+    return open_model(path_or_name)
 
 
 def table_path(model: Model) -> Path | None:
@@ -153,9 +144,7 @@ def entry_model(
                 f"[[model]] number {number} is measured but has no 'table = \"FILE.binary\"' line",
                 where,
             )
-        from lab.measured.model import measured_model
-
-        model: Model = measured_model(local(str(entry["table"])))
+        model: Model = open_model(MEASURED, local(str(entry["table"])))
     elif "table" in entry:
         raise ModelError(
             f"[[model]] number {number} has a table but model {source!r}: "

@@ -17,7 +17,8 @@ from lab import glsl
 from lab.brdf_explorer import ExplorerModel, glsl_version
 from lab.brdf_explorer import assemble as assemble_explorer
 from lab.gl import get_context
-from lab.models import Model, Value, load_model
+from lab.models import Model, Value
+from lab.sources import open_model
 
 MAX_LIGHTS = 8
 
@@ -62,7 +63,7 @@ def plane_of_incidence(theta_i: float, phi_i: float = 0.0, step: float = 1.0):
 
 
 def as_model(model: Model | str) -> Model:
-    return model if isinstance(model, Model) else load_model(model)
+    return model if isinstance(model, Model) else open_model(model)
 
 
 LOBE_GRID = (61, 121)  # vertices in theta_o and phi_o (the mirror direction is one of them)

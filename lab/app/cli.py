@@ -53,7 +53,7 @@ def argparse_hidden():
 
 def resolve_preset(text: str) -> Path:
     """A preset file, or the name of a shipped one (`phong_exponents`)."""
-    from lab.cli import UsageError
+    from lab.errors import UsageError
     from lab.presets import shipped_presets
 
     path = Path(text)
@@ -88,7 +88,7 @@ def cmd_app(args) -> int:
     # A preset given as a file (`brdf-lab app fit.toml`) is the same as --preset.
     presets = [m for m in args.models if m.endswith(".toml")]
     if presets and (args.preset or len(presets) > 1):
-        from lab.cli import UsageError
+        from lab.errors import UsageError
 
         raise UsageError("give one preset (FILE.toml or --preset FILE.toml)")
     if presets:
@@ -126,7 +126,7 @@ def cmd_app(args) -> int:
 
 
 def cmd_watch(args) -> int:
-    from lab.cli import parse_light
+    from lab.errors import parse_light
 
     theta, phi = parse_light(args.light)
     if not Path(args.file).is_file():

@@ -6,7 +6,7 @@ import os
 import time
 from pathlib import Path
 
-from lab.cli import UsageError
+from lab.errors import UsageError
 
 
 def _exercises(paths: list[str]):
@@ -36,7 +36,7 @@ def locate(student: Path, exercise) -> Path:
 
 def _output(path: str | None) -> Path | None:
     """A result file we can write, checked before any grading starts."""
-    from lab.cli import check_output
+    from lab.errors import check_output
 
     return None if path is None else check_output(path)
 

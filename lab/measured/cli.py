@@ -10,7 +10,7 @@ VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
 
 
 def _usage(message: str):
-    from lab.cli import UsageError
+    from lab.errors import UsageError
 
     return UsageError(message)
 
@@ -37,11 +37,12 @@ def _read(path: str):
 
 
 def cmd_tabulate(args) -> int:
-    from lab.cli import check_output, load
+    from lab.errors import check_output
     from lab.measured.merl import write_merl
     from lab.measured.tabulate import tabulate
+    from lab.sources import open_with_settings
 
-    model, values = load(args.model, args.set)
+    model, values = open_with_settings(args.model, args.set)
     if model.delta:
         raise _usage(f"{model.name} is an ideal mirror (a delta): it has no finite table")
     if not args.noise >= 0:
@@ -130,15 +131,15 @@ def cmd_sh(args) -> int:
         title = Path(args.table).name
     else:
         from lab import reference
-        from lab.cli import load
+        from lab.sources import open_with_settings
 
-        model, values = load(args.model or "ggx", args.set)
+        model, values = open_with_settings(args.model or "ggx", args.set)
 
         def lobe_fn(L, V):
             return reference.brdf(model.name, values, L, V)
 
         title = model.name
-    from lab.cli import check_output
+    from lab.errors import check_output
 
     out = check_output(args.output, ".png")
     path, rows = sh_figure(lobe_fn, args.theta_i, orders, out, title)
@@ -151,7 +152,7 @@ def cmd_sh(args) -> int:
 
 def cmd_render_measured(args) -> int:
     from lab import plots
-    from lab.cli import check_output, parse_light
+    from lab.errors import check_output, parse_light
     from lab.measured.figures import filter_figure
     from lab.measured.model import measured_model
     from lab.render import Renderer

@@ -14,7 +14,7 @@ DEFAULT_DECK_DIR = "out/slides"
 
 
 def _usage_error(message: str) -> Exception:
-    from lab.cli import UsageError
+    from lab.errors import UsageError
 
     return UsageError(message)
 

@@ -1,0 +1,54 @@
+"""One way to open a model, whatever the user names: every front end calls `open_model`.
+
+- a library name (`phong`), or a `.glsl` model file;
+- a BRDF Explorer `.brdf` file;
+- a MERL `.binary` table, opened as the `measured` model (`table=` gives the table
+  separately, as `render measured --table FILE.binary` does).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from lab.models import Model, ModelError, load_model
+
+MEASURED = "measured"  # the model that reads a measured table
+
+
+def open_model(spec: str | Path, table: str | Path | None = None) -> Model:
+    """The model `spec` names; `table` is the data file of the measured model."""
+    text = str(spec)
+    if table is not None or text == MEASURED:
+        if text != MEASURED:
+            raise ModelError(
+                f"a table is for the measured model: open {MEASURED!r} with it, not {text!r}"
+            )
+        if table is None:
+            raise ModelError(
+                "the measured model needs its data: open a MERL .binary table "
+                "(make one with 'brdf-lab tabulate MODEL -o FILE.binary')"
+            )
+        return _measured(table)
+    if text.endswith(".brdf"):
+        from lab.brdf_explorer import read_brdf  # BRDF Explorer's file format
+
+        return read_brdf(spec)
+    if text.endswith(".binary"):
+        return _measured(spec)
+    return load_model(spec)
+
+
+def open_with_settings(spec: str | Path, settings: list[str] | None) -> tuple[Model, dict]:
+    """The model `spec` names and its values from `NAME=VALUE` strings (e.g. `--set`)."""
+    model = open_model(spec)
+    return model, model.parse_settings(settings or [])
+
+
+def _measured(table: str | Path) -> Model:
+    if not Path(table).is_file():
+        raise ModelError(
+            f"{table}: no such file (make one with 'brdf-lab tabulate MODEL -o {table}')"
+        )
+    from lab.measured.model import measured_model  # numpy tables: loaded only when used
+
+    return measured_model(table)
