@@ -50,7 +50,7 @@ def test_solution_matches_library(exercise, grader):
     settings = [check.params for check in exercise.checks] + [{}]
     defaults = {p.name: p.default for p in solution.params.values()}
     extra = set(library.params) - set(solution.params)
-    assert not extra, f"{exercise.name}: the library model has parameters {extra} the solution lacks"
+    assert not extra, f"{exercise.name}: the solution lacks the library's parameters {extra}"
     for params in settings:
         values = {**defaults, **params}  # the solution's own defaults, as graded
         ours = np.asarray(grader.renderer.eval_angles(solution, values, angles))
