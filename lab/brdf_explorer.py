@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lab import glsl
+from lab.constants import glsl_defines
 from lab.models import SHADER_DIR, Model, ModelError, Param
 
 # Names declared at the start of a line: constants, globals, uniforms, functions.
@@ -282,6 +283,7 @@ def assemble(
 
     source = glsl.Source()
     source.add(f"#version {version} core", "<version>")
+    source.add(glsl_defines(), "<constants>")
     source.add(host_on, "<host>")
     if preamble:
         source.add(preamble, "<preamble>")

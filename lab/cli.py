@@ -98,7 +98,8 @@ def cmd_models(args) -> int:
 
 def cmd_render(args) -> int:
     from lab import plots
-    from lab.render import MAX_LIGHTS, Renderer
+    from lab.constants import MAX_LIGHTS
+    from lab.render import Renderer
 
     model, values = load_any_model(args)
     lights = [parse_scene_light(text) for text in args.light or ["45,0"]]

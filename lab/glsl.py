@@ -11,6 +11,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from lab.constants import glsl_defines
 from lab.models import SHADER_DIR, Model, ModelError, Value
 
 TARGETS = ("330", "300es")
@@ -162,6 +163,7 @@ def assemble_fragment(
     check_portable(model.code, model_label)
     source = Source()
     source.add("\n".join(VERSION_LINES[target]), "<version>")
+    source.add(glsl_defines(), "<constants>")
     preamble = preamble or DEFAULT_PREAMBLE.get(view, "")
     if preamble:
         source.add(preamble, "<preamble>")
@@ -185,6 +187,11 @@ def assemble_fragment(
 
 def vertex_source(target: str = "330") -> str:
     return "\n".join(VERSION_LINES[target]) + "\n" + VERTEX_SHADER
+
+
+def header(target: str = "330") -> str:
+    """The version lines and the lab's constants: the start of a stand-alone shader."""
+    return "\n".join(VERSION_LINES[target]) + "\n" + glsl_defines() + "\n"
 
 
 def translate_log(log: str, source: Source) -> list[CompileError]:

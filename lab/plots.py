@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lab.constants import LUMA
 from lab.models import Model
 
 
@@ -32,7 +33,7 @@ def save_image(image: np.ndarray, path: str | Path, exposure: float = 0.0) -> No
 
 
 def luminance(rgb: np.ndarray) -> np.ndarray:
-    return rgb @ np.array([0.2126, 0.7152, 0.0722], dtype=rgb.dtype)
+    return rgb @ np.array(LUMA, dtype=rgb.dtype)
 
 
 def _figure(polar: bool = False, three_d: bool = False):

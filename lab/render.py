@@ -16,11 +16,10 @@ import numpy as np
 from lab import glsl
 from lab.brdf_explorer import ExplorerModel, glsl_version
 from lab.brdf_explorer import assemble as assemble_explorer
+from lab.constants import MAX_LIGHTS, PLOT_DECADES
 from lab.gl import get_context
 from lab.models import Model, Value
 from lab.sources import open_model
-
-MAX_LIGHTS = 8
 
 
 @dataclass(frozen=True)
@@ -68,7 +67,7 @@ def as_model(model: Model | str) -> Model:
 
 LOBE_GRID = (61, 121)  # vertices in theta_o and phi_o (the mirror direction is one of them)
 LOBE_FAST_GRID = (25, 49)  # while a slider moves (llvmpipe sets triangles up on one core)
-LOBE_DECADES = 3.0  # the log scale's range, as the polar plot's
+LOBE_DECADES = PLOT_DECADES  # the log scale's range, as the polar plot's
 LOBE_STYLES = ("solid", "wire")
 LOBE_MAX_SEGMENTS = 96  # shaders/views/lobe_mesh_lines.glsl's MAX_SEGMENTS
 LOBE_MARK_RGB = {

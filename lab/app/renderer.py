@@ -7,8 +7,9 @@ import re
 import numpy as np
 
 from lab import glsl
+from lab.constants import MAX_LIGHTS
 from lab.models import Model
-from lab.render import MAX_LIGHTS, Light, Renderer, direction
+from lab.render import Light, Renderer, direction
 
 UNIFORM_LINE = re.compile(r"^uniform (float|vec3) ([A-Za-z_]\w*);$")
 SHAPES = ("torus", "sphere", "rounded box", "bumpy sphere")

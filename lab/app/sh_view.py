@@ -17,6 +17,7 @@ import pyqtgraph as pg
 from PyQt6.QtCore import Qt
 from PyQt6.QtWidgets import QLabel, QSpinBox
 
+from lab import constants
 from lab.app.state import ModelState, Settings
 from lab.app.views import LUMA, View, finite_max, look_key, pen, state_key
 from lab.app.widgets import LiveText
@@ -102,7 +103,7 @@ def sh_data(
     polar = renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
     theta_o, basis = plane_basis(float(phi_i))
     plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0, neginf=0.0)
-    finite = plane[np.abs(theta_o) <= 87.0]
+    finite = plane[np.abs(theta_o) <= constants.GRAZING_DEG]
     peak = float(finite.max()) if finite.size else 0.0
     return SHData(coefficients[:, 0], errors, theta_o, plane, basis, peak)
 
@@ -216,7 +217,10 @@ class SHView(View):
                 return False
             theta_o = np.arange(-90.0, 90.5, 1.0)
             self.show_lobe(
-                state, theta_o, plane, max(finite_max(plane[np.abs(theta_o) <= 87]), 1e-9)
+                state,
+                theta_o,
+                plane,
+                max(finite_max(plane[np.abs(theta_o) <= constants.GRAZING_DEG]), 1e-9),
             )
             self.series_curve.setData([], [])
             self.shown = ()

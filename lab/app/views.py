@@ -24,6 +24,7 @@ from PyQt6.QtWidgets import (
     QWidget,
 )
 
+from lab import constants
 from lab.app.renderer import MODES, SHAPES, AppRenderer
 from lab.app.state import LabState, ModelState
 from lab.app.widgets import LiveText, SettingCheck, SettingCombo, SettingSlider
@@ -38,7 +39,7 @@ from lab.render import (
     direction,
 )
 
-LUMA = np.array([0.2126, 0.7152, 0.0722])
+LUMA = np.array(constants.LUMA)
 BACKGROUND = (40, 40, 44)
 _BACKGROUND_BGR = np.array(BACKGROUND[::-1], np.float32) / 255.0
 
@@ -378,7 +379,7 @@ class PolarView(View):
 
     title = "Polar plot"
     name = "polar"
-    DECADES = 3.0
+    DECADES = constants.PLOT_DECADES
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
@@ -453,7 +454,7 @@ class PolarView(View):
                 self.data.append((state, polar))
         lum = [(st, p, p.values.astype(np.float64) @ LUMA) for st, p in self.data]
         # Grazing directions are left out of the scale: some models (Ward) diverge there.
-        peaks = [finite_max(v[np.abs(p.theta_o) <= 87.0]) for _, p, v in lum]
+        peaks = [finite_max(v[np.abs(p.theta_o) <= constants.GRAZING_DEG]) for _, p, v in lum]
         peaks += [float(np.asarray(p.spike) @ LUMA) for _, p, _ in lum if p.spike is not None]
         peak = max([x for x in peaks if np.isfinite(x)] + [1e-12])
         ti = math.radians(theta_i)

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lab.constants import LUMA, MAX_LIGHTS
 from lab.glsl import ShaderCompileError, label_of
 from lab.grading.exercise import (
     Check,
@@ -25,7 +26,7 @@ from lab.grading.exercise import (
     wrapper_origin,
 )
 from lab.models import Model, ModelError
-from lab.render import MAX_LIGHTS, Light, Renderer, direction
+from lab.render import Light, Renderer, direction
 
 VALUES_FILE = "values.npz"
 
@@ -314,7 +315,7 @@ def mean_flip(reference8: np.ndarray, student8: np.ndarray) -> float:
 
 
 def luminance(values: np.ndarray) -> list[float]:
-    lum = np.nan_to_num(values, nan=0.0) @ np.array([0.2126, 0.7152, 0.0722])
+    lum = np.nan_to_num(values, nan=0.0) @ np.array(LUMA)
     return [round(float(v), 6) for v in lum]
 
 

@@ -7,11 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
+from lab import constants
 from lab.measured import merl, sh
 from lab.measured.fit import FitResult, cpu_evaluate, evaluate_lobes
 from lab.measured.model import measured_model
 
-LUMA = np.array([0.2126, 0.7152, 0.0722])
+LUMA = np.array(constants.LUMA)
 
 
 def _pyplot():

@@ -99,7 +99,7 @@ for (const [fileName, want] of Object.entries(expected.files)) {
   for (const [view, wantView] of Object.entries(want.assembly)) {
     let source;
     try {
-      source = assembleFragment(model, view, files, { target: "300es" });
+      source = assembleFragment(model, view, files, { target: "300es", constants: expected.constants });
     } catch (err) {
       if (!(err instanceof ModelError)) throw err;
       const gotErr = { file: err.file, line: err.line, message: err.detail };
@@ -130,7 +130,7 @@ if (process.argv[2]) {
     const enums = enumText ? Object.fromEntries(enumText.split(",").map((kv) => kv.split("="))) : {};
     const path = `shaders/brdfs/${name}.glsl`;
     const model = parseModel(files[`brdfs/${name}.glsl`], path, name);
-    const source = assembleFragment(model, view, files, { target: "300es", enums });
+    const source = assembleFragment(model, view, files, { target: "300es", enums, constants: expected.constants });
     if (source.text !== want.text || !same(runs(source.origins), want.origins)) {
       mismatches.push({ file: key, what: "library assembly", got: source.text, want: want.text });
     }

@@ -21,7 +21,7 @@ void main() {
     vec3 Y = vec3(0.0, 1.0, 0.0);
     vec3 L = lobe_direction(u_light_angles);
     vec3 V = lobe_direction(angles);
-    float value = dot(BRDF(L, V, N, X, Y), vec3(0.2126, 0.7152, 0.0722));
+    float value = dot(BRDF(L, V, N, X, Y), LAB_LUMA);
     if (u_cos) value *= max(V.z, 0.0);
     float r;
     if (u_log) {

@@ -14,9 +14,9 @@ void main() {
     vec3 Y = vec3(0.0, 1.0, 0.0);
     vec3 L = lobe_direction(u_light_angles);
     vec3 V = lobe_direction(angles);
-    vec3 luma = vec3(0.2126, 0.7152, 0.0722);
+    vec3 luma = LAB_LUMA;
     float value = dot(BRDF(L, V, N, X, Y), luma);
     if (u_cos) value *= max(V.z, 0.0);
-    float shown = angles.x <= radians(87.0) ? value : 0.0;
+    float shown = angles.x <= radians(LAB_GRAZING_DEG) ? value : 0.0;
     frag_color = vec4(value, shown, dot(DELTA_REFLECTANCE(L, N, X, Y), luma), 1.0);
 }

@@ -6,8 +6,8 @@
 // The host turns the model's float and colour uniforms into globals NAME (set per pixel by
 // sv_assign, which it generates) fed from uniforms NAME_base.
 uniform vec2 u_resolution;
-uniform vec3 u_light_dir[8];
-uniform vec3 u_light_rgb[8];
+uniform vec3 u_light_dir[LAB_MAX_LIGHTS];
+uniform vec3 u_light_rgb[LAB_MAX_LIGHTS];
 uniform vec3 u_ambient;
 uniform int u_shape;  // 0 torus, 1 sphere, 2 rounded box, 3 bumpy sphere
 uniform int u_mode;

@@ -3,8 +3,8 @@
 // reflected by AMBIENT_REFLECTANCE() (the Phong illumination model's ka; 1 for other models).
 // A delta (mirror) model reflects the procedural environment of environment().
 uniform vec2 u_resolution;
-uniform vec3 u_light_dir[8];
-uniform vec3 u_light_rgb[8];
+uniform vec3 u_light_dir[LAB_MAX_LIGHTS];
+uniform vec3 u_light_rgb[LAB_MAX_LIGHTS];
 uniform vec3 u_ambient;
 uniform bool u_multiply_cos;
 out vec4 frag_color;

@@ -11,6 +11,18 @@ export const VERSION_LINES = {
   "300es": ["#version 300 es", "precision highp float;", "precision highp int;"],
 };
 
+/** The lab's constants as GLSL #defines, as lab/constants.py writes them (the manifest's
+ * `constants`, so the page never keeps its own copy). */
+export function glslDefines(constants) {
+  const c = constants;
+  return [
+    `#define LAB_LUMA vec3(${c.LUMA.map((x) => x.toFixed(4)).join(", ")})`,
+    `#define LAB_MAX_LIGHTS ${c.MAX_LIGHTS}`,
+    `#define LAB_GRAZING_DEG ${c.GRAZING_DEG.toFixed(1)}`,
+    `#define LAB_PLOT_DECADES ${c.PLOT_DECADES.toFixed(1)}`,
+  ].join("\n");
+}
+
 // View constants used when the caller gives no preamble (e.g. one light for the sphere).
 export const DEFAULT_PREAMBLE = { sphere: "const int LIGHT_COUNT = 1;" };
 
@@ -124,11 +136,13 @@ function addInclude(source, relative, seen, model, files) {
  * ("terms/common.glsl", "views/sphere.glsl", ...) to their text.
  */
 export function assembleFragment(model, view, files, { target = "300es", preamble = "",
-  enums = {} } = {}) {
+  enums = {}, constants } = {}) {
   if (!TARGETS.includes(target)) throw new Error(`unknown GLSL target ${target}`);
+  if (!constants) throw new Error("assembleFragment needs the manifest's constants");
   checkPortable(model.code, model.path);
   const source = new Source();
   source.add(VERSION_LINES[target].join("\n"), "<version>");
+  source.add(glslDefines(constants), "<constants>");
   preamble = preamble || DEFAULT_PREAMBLE[view] || "";
   if (preamble) source.add(preamble, "<preamble>");
   const seen = new Set();

@@ -3,7 +3,7 @@
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 
-const MAX_LIGHTS = 8;
+const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
 const SLIDER_STEPS = 1000;
@@ -353,7 +353,7 @@ class Panel {
     if (!this.programs.has(key)) {
       // The light count is a constant of the sphere view, as on the desktop.
       const preamble = view === "sphere" ? `const int LIGHT_COUNT = ${lights};` : "";
-      const source = assembleFragment(this.model, view, lab.files, { target: "300es", preamble, enums });
+      const source = assembleFragment(this.model, view, lab.files, { target: "300es", preamble, enums, constants: C });
       this.programs.set(key, compile(this.gl, source.text, source));
     }
     return this.programs.get(key);
@@ -390,8 +390,8 @@ class Panel {
     gl.useProgram(compiled.program);
     gl.bindVertexArray(this.vao);
     this.setParams(gl, compiled);
-    const dirs = new Float32Array(3 * MAX_LIGHTS);
-    const rgb = new Float32Array(3 * MAX_LIGHTS);
+    const dirs = new Float32Array(3 * C.MAX_LIGHTS);
+    const rgb = new Float32Array(3 * C.MAX_LIGHTS);
     lab.lights.forEach((light, i) => {
       dirs.set(direction(light.theta, light.phi), 3 * i);
       rgb.set(light.rgb, 3 * i);
@@ -485,8 +485,7 @@ class Panel {
   }
 }
 
-const luma = (r, g, b) => 0.2126 * r + 0.7152 * g + 0.0722 * b;
-const GRAZING_DEG = 87; // left out of the plot's scale: some models (Ward) diverge there
+const luma = (r, g, b) => C.LUMA[0] * r + C.LUMA[1] * g + C.LUMA[2] * b;
 
 /** The lobe (luminance of f_r) on a half disc, 0 deg = the normal; `spike`: the RGB
  * reflectance of a delta model's spike, drawn at the mirror angle with that length. */
@@ -551,7 +550,7 @@ function drawPolar(canvas, values, thetaI, spike) {
     if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
     f = Number.isFinite(f) ? Math.max(f, 0) : 0;
     lum.push(f);
-    if (Math.abs(i - 90) <= GRAZING_DEG) peak = Math.max(peak, f);
+    if (Math.abs(i - 90) <= C.GRAZING_DEG) peak = Math.max(peak, f);
   }
   // The outer circle: the lobe's peak; with a delta spike at least 1, so the spike's length
   // is its reflectance (the whole circle = all the light).
@@ -668,12 +667,12 @@ function buildLights() {
   });
   $("#lights").replaceChildren(...rows);
   lab.lights.forEach((light, i) => setLight(light.theta, light.phi, i));
-  $("#add-light").disabled = lab.lights.length >= MAX_LIGHTS;
+  $("#add-light").disabled = lab.lights.length >= C.MAX_LIGHTS;
   setActiveLight(Math.min(lab.active, lab.lights.length - 1));
 }
 
 function addLight(light = null) {
-  if (lab.lights.length >= MAX_LIGHTS) return;
+  if (lab.lights.length >= C.MAX_LIGHTS) return;
   const first = lab.lights[0];
   lab.lights.push(light || { theta: 60, phi: wrapPhi(first.phi + 180), rgb: [1, 1, 1] });
   buildLights();
@@ -752,7 +751,7 @@ function readHash() {
       const rgb = rest.length ? parseRgb(rest.join(",")) : [1, 1, 1];
       if (!Number.isFinite(theta) || (rest.length && !rgb)) {
         lab.notes.push(`light=${value}: write THETA,PHI in degrees, optionally ,R,G,B`);
-      } else if (lights.length < MAX_LIGHTS) {
+      } else if (lights.length < C.MAX_LIGHTS) {
         lights.push({ theta: clampTheta(theta), phi: wrapPhi(Number.isFinite(phi) ? phi : 0), rgb });
       }
     } else if (key === "ambient") {
@@ -841,6 +840,7 @@ function addModelText(label, code, expectedName = null) {
 
 async function load() {
   const manifest = JSON.parse(await fetchText("manifest.json"));
+  Object.assign(C, manifest.constants);
   const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
   manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
   for (const name of manifest.models) addModelText(`shaders/brdfs/${name}.glsl`, lab.files[`brdfs/${name}.glsl`], name);

@@ -1,0 +1,34 @@
+"""Constants every part of the lab shares, in one place.
+
+Python reads them from here; GLSL gets them as `#define LAB_...` lines at the top of every
+assembled program (`glsl_defines`); the web page gets them in its manifest (`as_dict`).
+"""
+
+from __future__ import annotations
+
+LUMA = (0.2126, 0.7152, 0.0722)  # Rec. 709 luminance weights of linear RGB
+MAX_LIGHTS = 8  # directional lights a view takes at once (uniform array sizes)
+GRAZING_DEG = 87.0  # plots leave out |θo| beyond this when they scale (Ward diverges there)
+PLOT_DECADES = 3.0  # range of the log scale of the polar plot and the 3D lobe
+
+
+def as_dict() -> dict[str, object]:
+    """The constants for the web page (manifest.json)."""
+    return {
+        "LUMA": list(LUMA),
+        "MAX_LIGHTS": MAX_LIGHTS,
+        "GRAZING_DEG": GRAZING_DEG,
+        "PLOT_DECADES": PLOT_DECADES,
+    }
+
+
+def glsl_defines() -> str:
+    """`#define` lines for GLSL, prefixed LAB_ so they cannot collide with a user's names."""
+    return "\n".join(
+        [
+            "#define LAB_LUMA vec3({:.4f}, {:.4f}, {:.4f})".format(*LUMA),
+            f"#define LAB_MAX_LIGHTS {MAX_LIGHTS}",
+            f"#define LAB_GRAZING_DEG {GRAZING_DEG:.1f}",
+            f"#define LAB_PLOT_DECADES {PLOT_DECADES:.1f}",
+        ]
+    )
