@@ -19,6 +19,10 @@ IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*$")
 Value = float | bool | str | tuple[float, float, float]
 
 
+# What a model's header may claim (@property); the physics tests hold each model to them.
+PROPERTIES = ("reciprocal", "isotropic", "energy-conserving")
+
+
 class ModelError(ValueError):
     """A problem in a model file or a parameter value, with where it happened."""
 
@@ -141,6 +145,7 @@ class Model:
     params: dict[str, Param] = field(default_factory=dict)
     delta: bool = False
     ambient: str = ""  # the colour parameter that reflects ambient light (@ambient)
+    properties: list[str] = field(default_factory=list)  # @property: what tests hold it to
 
     def defaults(self) -> dict[str, Value]:
         return {p.name: p.default for p in self.params.values()}
@@ -271,6 +276,16 @@ def parse_model(code: str, path: Path | str, expected_name: str | None = None) -
             model.delta = True
         elif keyword == "ambient":
             model.ambient, ambient_line = rest, number
+        elif keyword == "property":
+            for word in rest.split():
+                if word not in PROPERTIES:
+                    raise ModelError(
+                        f"@property {word}: unknown property; use {', '.join(PROPERTIES)}",
+                        path,
+                        number,
+                    )
+                if word not in model.properties:
+                    model.properties.append(word)
         elif keyword == "param":
             param = parse_param(rest, path, number)
             if param.name in model.params:
@@ -279,7 +294,7 @@ def parse_model(code: str, path: Path | str, expected_name: str | None = None) -
         else:
             raise ModelError(
                 f"unknown header keyword @{keyword}: use @model, @title, @formula, @source, "
-                "@include, @delta, @ambient or @param",
+                "@include, @delta, @ambient, @property or @param",
                 path,
                 number,
             )

@@ -10,8 +10,16 @@ from lab.models import load_model, model_names
 from lab.render import direction
 
 FINITE_MODELS = [n for n in model_names() if not load_model(n).delta]
-PHYSICAL = ["lambert", "ward", "cook_torrance", "ggx", "oren_nayar", "lommel_seeliger"]
-ISOTROPIC = [n for n in FINITE_MODELS if n != "ward"]
+
+
+def claiming(prop: str) -> list[str]:
+    """The finite library models whose header claims `@property prop`."""
+    return [n for n in FINITE_MODELS if prop in load_model(n).properties]
+
+
+PHYSICAL = claiming("energy-conserving")
+ISOTROPIC = claiming("isotropic")
+RECIPROCAL = claiming("reciprocal")
 
 
 # float32 limits how sharp a lobe can be evaluated to 1e-4: an error of 6e-8 in a cosine
@@ -85,19 +93,21 @@ def test_zero_below_the_horizon(renderer, name):
     assert (renderer.probe(name, None, L, V) == 0).all()
 
 
-@pytest.mark.parametrize("name", [n for n in FINITE_MODELS if n != "phong_illumination"])
+@pytest.mark.parametrize("name", FINITE_MODELS)
 def test_helmholtz_reciprocity(renderer, name):
+    """Swapping L and V leaves f_r unchanged exactly for the models claiming `reciprocal`."""
     rng = np.random.default_rng(7)
     model = load_model(name)
     values = model.resolve(random_values(model, rng))
     angles = random_pairs(rng, 1000)
     L, V = direction(angles[:, 0], angles[:, 1]), direction(angles[:, 2], angles[:, 3])
-    np.testing.assert_allclose(
+    same = np.allclose(
         renderer.probe(model, values, L, V),
         renderer.probe(model, values, V, L),
         rtol=2e-4,
         atol=1e-6,
     )
+    assert same == (name in RECIPROCAL), f"{name}: header and behaviour disagree on reciprocity"
 
 
 def test_phong_illumination_model_is_not_reciprocal(renderer):
@@ -114,9 +124,10 @@ def test_phong_illumination_model_is_not_reciprocal(renderer):
     assert forward == pytest.approx(phong / np.cos(np.radians(20)), rel=1e-4)
 
 
-@pytest.mark.parametrize("name", ISOTROPIC + ["ward"])
+@pytest.mark.parametrize("name", FINITE_MODELS)
 def test_isotropy(renderer, name):
-    """Rotating both directions about N leaves f_r unchanged, except for anisotropic Ward."""
+    """Rotating both directions about N leaves f_r unchanged for the models claiming
+    `isotropic`; anisotropic Ward changes."""
     rng = np.random.default_rng(3)
     angles = random_pairs(rng, 500, 80.0)
     rotated = angles + np.array([0.0, 37.0, 0.0, 37.0])
@@ -124,7 +135,7 @@ def test_isotropy(renderer, name):
     a = renderer.eval_angles(name, values, angles)
     b = renderer.eval_angles(name, values, rotated)
     same = np.allclose(a, b, rtol=2e-4, atol=1e-6)
-    assert same == (name != "ward")
+    assert same == (name in ISOTROPIC), f"{name}: header and behaviour disagree on isotropy"
     if name == "ward":  # alpha_x = alpha_y makes Ward isotropic again
         iso = {"alpha_x": 0.2, "alpha_y": 0.2}
         np.testing.assert_allclose(
@@ -162,7 +173,23 @@ def test_energy_conservation(renderer, name):
         assert a.max() <= 1.0 + 0.01, (name, values, a.max(), THETAS[a.max(axis=1).argmax()])
 
 
-@pytest.mark.parametrize("name", ["phong", "blinn_phong"])
+def test_property_lists_match_the_lecture():
+    """The headers' claims, read back: the lecture's physical models and its heuristics."""
+    assert set(PHYSICAL) == {
+        "lambert",
+        "ward",
+        "cook_torrance",
+        "ggx",
+        "oren_nayar",
+        "lommel_seeliger",
+    }
+    assert set(FINITE_MODELS) - set(RECIPROCAL) == {"phong_illumination"}
+    assert set(FINITE_MODELS) - set(ISOTROPIC) == {"ward"}
+
+
+@pytest.mark.parametrize(
+    "name", sorted(set(FINITE_MODELS) - set(PHYSICAL) - {"phong_illumination"})
+)
 def test_unnormalised_phong_gains_energy(renderer, name):
     """The lecture's point: ks (R.V)^ke, ks = 1, a low exponent reflects more than it gets."""
     a = renderer.albedo(name, {"kd": (0.5,) * 3, "ks": (1.0,) * 3, "ke": 1.0}, THETAS)

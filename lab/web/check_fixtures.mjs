@@ -54,12 +54,12 @@ function fillLog(log, source) {
 }
 
 function modelObject(model) {
-  const { name, title, formula, source, includes, delta, ambient } = model;
+  const { name, title, formula, source, includes, delta, ambient, properties } = model;
   const params = model.params.map((p) => ({
     name: p.name, kind: p.kind, default: p.default, doc: p.doc, minimum: p.minimum,
     maximum: p.maximum, scale: p.scale, choices: p.choices, line: p.line,
   }));
-  return { name, title, formula, source, includes, delta, ambient, params };
+  return { name, title, formula, source, includes, delta, ambient, properties, params };
 }
 
 // Key order must not matter when comparing with Python's JSON.

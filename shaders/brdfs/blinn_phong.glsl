@@ -1,5 +1,6 @@
 // @model blinn_phong
 // @title Blinn-Phong: cosine lobe of the half vector around the normal
+// @property reciprocal isotropic
 // @formula f_r = kd / pi + ks * max(0, N.H)^ke,  H = normalize(L + V)
 // @source J. F. Blinn, "Models of Light Reflection for Computer Synthesized Pictures", SIGGRAPH 1977.
 // @param kd color 0.3 0.3 0.3 | diffuse albedo

@@ -1,5 +1,6 @@
 // @model cook_torrance
 // @title Cook-Torrance microfacet model
+// @property reciprocal isotropic energy-conserving
 // @formula f_r = kd / pi + ks * F D G / (pi (N.L)(N.V))
 // @formula D: Beckmann exp(-tan^2(a) / m^2) / (4 m^2 cos^4(a)), cos(a) = N.H; or Blinn / Gaussian
 // @formula    with half-angle beta = atan(m) (see terms/distributions.glsl for their normalisation)

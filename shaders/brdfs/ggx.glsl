@@ -1,5 +1,6 @@
 // @model ggx
 // @title GGX / Trowbridge-Reitz microfacet model with height-correlated Smith shadowing
+// @property reciprocal isotropic energy-conserving
 // @formula f_r = kd / pi + ks * F D G2 / (4 (N.L)(N.V))
 // @formula D = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2);  G2 = 1 / (1 + Lambda(L) + Lambda(V))
 // @formula Lambda = (-1 + sqrt(1 + alpha^2 tan^2(theta))) / 2;  F = f0 + (1 - f0)(1 - V.H)^5

@@ -1,5 +1,6 @@
 // @model lambert
 // @title Lambert: ideal diffuse reflection
+// @property reciprocal isotropic energy-conserving
 // @formula f_r = albedo / pi
 // @source J. H. Lambert, Photometria, 1760.
 // @param albedo color 0.8 0.8 0.8 | fraction of incident light reflected (diffuse albedo)

@@ -1,5 +1,6 @@
 // @model mirror
 // @title Ideal mirror: specular reflection as a delta function
+// @property reciprocal isotropic energy-conserving
 // @formula f_r = rho_s * delta(omega_o - R(omega_i)) / cos(theta_i),  R = 2(N.L)N - L
 // @source Law of reflection; see e.g. Pharr, Jakob, Humphreys, PBR 4th ed., 9.2.
 // @delta

@@ -1,5 +1,6 @@
 // @model oren_nayar
 // @title Oren-Nayar: rough diffuse surface (qualitative model)
+// @property reciprocal isotropic energy-conserving
 // @formula f_r = albedo / pi * (A + B max(0, cos(phi_i - phi_o)) sin(a) tan(b))
 // @formula A = 1 - 0.5 s^2 / (s^2 + 0.33),  B = 0.45 s^2 / (s^2 + 0.09),  a = max(theta_i, theta_o), b = min(...)
 // @source M. Oren and S. K. Nayar, "Generalization of Lambert's Reflectance Model", SIGGRAPH 1994, eq. 30.

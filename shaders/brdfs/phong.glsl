@@ -1,5 +1,6 @@
 // @model phong
 // @title Phong: cosine lobe around the mirror direction
+// @property reciprocal isotropic
 // @formula f_r = kd / pi + ks * max(0, R.V)^ke,  R = 2(N.L)N - L
 // @source B. T. Phong, "Illumination for Computer Generated Pictures", CACM 18(6), 1975.
 // @param kd color 0.3 0.3 0.3 | diffuse albedo

@@ -1,5 +1,6 @@
 // @model phong_illumination
 // @title Phong illumination model of the lecture (heuristic, not a physical BRDF)
+// @property isotropic
 // @formula L_r = ka L_a + sum_l L_l (kd (N.L_l) + ks (R(L_l).V)^ke)   (the slide; specular without the cosine)
 // @formula as a BRDF: f_r = kd + ks (R.V)^ke / (N.L), which is not reciprocal: f(L, V) != f(V, L)
 // @source B. T. Phong, "Illumination for Computer Generated Pictures", CACM 18(6), 1975.

@@ -1,5 +1,6 @@
 // @model ward
 // @title Ward: anisotropic elliptical Gaussian lobe
+// @property reciprocal energy-conserving
 // @formula f_r = kd / pi + ks * exp(-tan^2(theta_h) (cos^2(phi_h) / ax^2 + sin^2(phi_h) / ay^2))
 // @formula       / (4 pi ax ay sqrt((N.L)(N.V)));  isotropic when ax = ay = sigma
 // @source G. J. Ward, "Measuring and Modeling Anisotropic Reflection", SIGGRAPH 1992, eq. 5a.

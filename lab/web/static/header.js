@@ -157,11 +157,14 @@ export function parseParam(text, path, line) {
  * "shaders/brdfs/NAME.glsl"); `expectedName` is given for library files, whose @model
  * must match the file name. Returns a plain object shaped like lab.models.Model.
  */
+// What a model's header may claim (@property), as lab/models.py's PROPERTIES.
+export const PROPERTIES = ["reciprocal", "isotropic", "energy-conserving"];
+
 export function parseModel(code, path, expectedName = null) {
   const stem = path.split("/").pop().replace(/\.[^.]*$/, "");
   const model = {
     name: expectedName || stem, path, code, title: "", formula: [], source: [],
-    includes: [], params: [], delta: false, ambient: "",
+    includes: [], params: [], delta: false, ambient: "", properties: [],
   };
   let named = false;
   let ambientLine = 0;
@@ -189,6 +192,14 @@ export function parseModel(code, path, expectedName = null) {
     else if (keyword === "ambient") {
       model.ambient = rest;
       ambientLine = number;
+    } else if (keyword === "property") {
+      for (const word of pySplit(rest)) {
+        if (!PROPERTIES.includes(word)) {
+          throw new ModelError(
+            `@property ${word}: unknown property; use ${PROPERTIES.join(", ")}`, path, number);
+        }
+        if (!model.properties.includes(word)) model.properties.push(word);
+      }
     } else if (keyword === "param") {
       const param = parseParam(rest, path, number);
       if (model.params.some((p) => p.name === param.name)) {
@@ -198,7 +209,7 @@ export function parseModel(code, path, expectedName = null) {
     } else {
       throw new ModelError(
         `unknown header keyword @${keyword}: use @model, @title, @formula, @source, ` +
-          "@include, @delta, @ambient or @param", path, number);
+          "@include, @delta, @ambient, @property or @param", path, number);
     }
   }
   if (ambientLine) {
