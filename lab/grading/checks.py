@@ -48,6 +48,9 @@ class CheckResult:
     flip: float | None = None
     curve: dict | None = None  # polar: theta_o, expected, got (luminance)
     errors: list[str] = field(default_factory=list)  # compile errors, file:line: message
+    diagnosis: str = ""  # "Likely: ..." (also the end of the message), or ""
+    failing: list[int] = field(default_factory=list)  # polar: indices of failing points
+    setting: dict | None = None  # hidden mode: the seed and parameter values used
 
     @property
     def passed(self) -> bool:
@@ -63,15 +66,16 @@ def failed(check: Check, message: str, status: str = "failed", **extra) -> Check
 LOOP = re.compile(r"\b(for|while|do)\b\s*[({]")
 
 
-def loop_hint(code: str, label: str) -> str:
+def loop_hint(code: str, label: str, given: str = "") -> str:
     """For a failed check: where the file loops, and what an endless loop does here.
 
     Software rasterizers such as llvmpipe cut every loop off after 65,535 iterations, so an
     endless loop does not hang (the time limit catches that on GPUs and softpipe): it returns
     whatever it had, and the check sees wrong values instead.
     """
+    untouched = {line.strip() for line in given.splitlines()}
     for number, line in enumerate(code.splitlines(), start=1):
-        if LOOP.search(line.split("//")[0]):
+        if LOOP.search(line.split("//")[0]) and line.strip() not in untouched:
             return (
                 f" (note: {label}:{number}: this line starts a loop; if it never ends, llvmpipe "
                 "stops it after 65,535 iterations and the values come out wrong, and a GPU "
@@ -326,6 +330,7 @@ class Grader:
     def __init__(self) -> None:
         self._renderer: Renderer | None = None
         self._solutions: dict[Path, Model] = {}
+        self._explainer = None
 
     @property
     def renderer(self) -> Renderer:
@@ -378,10 +383,19 @@ class Grader:
                     check, f"cannot get the reference: {err} (ask your instructor)", status="error"
                 )
                 continue
-            yield self.grade(exercise, check, model, code, expected)
+            result = self.grade(exercise, check, model, code, expected, live=seed is not None)
+            if seed is not None:
+                result.setting = {"seed": seed, "params": check.params, "theta_i": check.theta_i}
+            yield result
 
     def grade(
-        self, exercise: Exercise, check: Check, model: Model, code: str, expected: np.ndarray
+        self,
+        exercise: Exercise,
+        check: Check,
+        model: Model,
+        code: str,
+        expected: np.ndarray,
+        live: bool = False,
     ) -> CheckResult:
         try:
             raw = render(self.renderer, model, check)
@@ -396,8 +410,24 @@ class Grader:
             return failed(check, str(err), status="error")
         result = self.compare(check, expected, raw)
         if not result.passed:
-            result.message += loop_hint(code, label_of(model.path))
+            result.diagnosis = self.diagnose(exercise, check, model, expected, raw, live)
+            if result.diagnosis:
+                result.message += ". " + result.diagnosis
+            else:  # a loop is only suspected when nothing else explains the values
+                stub = exercise.stub.read_text(encoding="utf-8") if exercise.stub.is_file() else ""
+                result.message += loop_hint(code, label_of(model.path), stub)
         return result
+
+    def diagnose(self, exercise, check, model, expected, raw, live: bool) -> str:
+        """The likely mistake (lab.grading.explain); a diagnosis never breaks grading."""
+        from lab.grading.explain import Explainer
+
+        if self._explainer is None:
+            self._explainer = Explainer(self)
+        try:
+            return self._explainer.explain(exercise, check, model, expected, raw, live)
+        except Exception:  # noqa: BLE001 - no hint is better than no grade
+            return ""
 
     @staticmethod
     def compare(check: Check, expected: np.ndarray, raw: np.ndarray) -> CheckResult:

@@ -9,11 +9,11 @@ from __future__ import annotations
 import difflib
 import re
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from lab.glsl import check_portable, label_of
-from lab.models import Model, ModelError, load_model, parse_model
+from lab.models import Model, ModelError, Param, load_model, parse_model
 from lab.render import Light
 
 if sys.version_info >= (3, 11):
@@ -175,6 +175,7 @@ def read_submission(path: Path) -> str:
             f"{path}:{line}: the file is not UTF-8 text (byte 0x{raw[err.start]:02x}); "
             "save it as UTF-8"
         ) from None
+    code = code.removeprefix("\ufeff")  # editors on Windows save a byte-order mark: harmless
     if not code.strip():
         raise SubmissionError(f"{path}: the file is empty; start from the stub in the exercise")
     return code
@@ -246,12 +247,27 @@ def build_model(exercise: Exercise, path: Path, code: str) -> Model:
     stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
     for name, param in stub.params.items():
         mine = model.params.get(name)
-        if mine is None or mine.kind != param.kind or mine.choices != param.choices:
+        what = header_edit(param, mine)
+        if what:
+            where = f"{label}:{mine.line}" if mine is not None and mine.line else label
             raise SubmissionError(
-                f"{label}: keep the header line '{param.header_line()}' from the stub "
-                "(the grader sets this parameter)"
+                f"{where}: {what} in the header; put back the stub's line "
+                f"'{param.header_line()}' (the grader sets this parameter)"
             )
+        if mine.default != param.default:  # a default changed to try things out costs nothing
+            model.params[name] = replace(mine, default=param.default)
     return model
+
+
+def header_edit(stub: Param, mine: Param | None) -> str:
+    """What a submission changed in a parameter's header line, in words ('' if nothing)."""
+    if mine is None:
+        return f"you removed the parameter {stub.name}"
+    if mine.kind != stub.kind:
+        return f"you changed the type of {stub.name} from {stub.kind} to {mine.kind}"
+    if mine.choices != stub.choices:
+        return f"you changed the choices of {stub.name}"
+    return ""
 
 
 def wrapper_origin(exercise: Exercise, code: str, file: str, line: int) -> tuple[str, int]:

@@ -12,6 +12,7 @@ import numpy as np
 
 from lab.grading.checks import VALUES_FILE, Grader, expected_value, render
 from lab.grading.exercise import find_exercises
+from lab.grading.explain import make_diagnosis
 
 
 def make_references(root: str | Path, grader: Grader | None = None) -> list[Path]:
@@ -38,6 +39,7 @@ def make_references(root: str | Path, grader: Grader | None = None) -> list[Path
             (folder / name).unlink()
         np.savez_compressed(folder / VALUES_FILE, **values)
         written.append(folder / VALUES_FILE)
+        written += make_diagnosis(exercise, grader)
     return written
 
 

@@ -8,7 +8,7 @@ in vec2 v_angles;
 out vec4 frag_color;
 
 // 1 on a grid line every `step` degrees of `angle`, about `width` pixels wide, 0 off it.
-float grid_line(float angle, float step, float width) {
+float lab_grid_line(float angle, float step, float width) {
     float from_line = abs(fract(angle / step + 0.5) - 0.5) * step;
     float pixel = max(fwidth(angle), 1e-6);
     return 1.0 - smoothstep(0.5 * width - 0.5, 0.5 * width + 0.5, from_line / pixel);
@@ -29,7 +29,7 @@ void main() {
     float rim = pow(1.0 - n.z, 3.0);
     vec3 color = u_color * (0.3 + diffuse + 0.35 * rim) + vec3(0.18 * shine);
     if (inside) color *= 0.6;
-    float line = max(grid_line(v_angles.x, 10.0, 1.2), grid_line(v_angles.y, 30.0, 1.2));
+    float line = max(lab_grid_line(v_angles.x, 10.0, 1.2), lab_grid_line(v_angles.y, 30.0, 1.2));
     if (u_wire) {
         if (line < 0.02) discard;
         frag_color = vec4(min(u_color * 1.1, vec3(1.0)), line);

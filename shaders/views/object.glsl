@@ -17,14 +17,14 @@ out vec4 frag_color;
 
 void sv_assign(float sv_amount, vec3 sv_albedo);
 
-mat3 object_rotation() {
+mat3 lab_object_rotation() {
     float cy = cos(u_yaw), sy = sin(u_yaw), cp = cos(u_pitch), sp = sin(u_pitch);
     mat3 yaw = mat3(cy, 0.0, -sy, 0.0, 1.0, 0.0, sy, 0.0, cy);
     mat3 pitch = mat3(1.0, 0.0, 0.0, 0.0, cp, sp, 0.0, -sp, cp);
     return pitch * yaw;
 }
 
-float shape_distance(vec3 p) {
+float lab_shape_distance(vec3 p) {
     if (u_shape == 0) return length(vec2(length(p.xz) - 0.72, p.y)) - 0.3;
     if (u_shape == 2) return length(max(abs(p) - vec3(0.5), 0.0)) - 0.2;
     float r = length(p) - 0.85;
@@ -32,15 +32,15 @@ float shape_distance(vec3 p) {
     return r;
 }
 
-vec3 shape_normal(vec3 p) {
+vec3 lab_shape_normal(vec3 p) {
     const vec2 e = vec2(1e-3, 0.0);
-    return normalize(vec3(shape_distance(p + e.xyy) - shape_distance(p - e.xyy),
-                          shape_distance(p + e.yxy) - shape_distance(p - e.yxy),
-                          shape_distance(p + e.yyx) - shape_distance(p - e.yyx)));
+    return normalize(vec3(lab_shape_distance(p + e.xyy) - lab_shape_distance(p - e.xyy),
+                          lab_shape_distance(p + e.yxy) - lab_shape_distance(p - e.yxy),
+                          lab_shape_distance(p + e.yyx) - lab_shape_distance(p - e.yyx)));
 }
 
 // Texture coordinates: around the torus' two circles, or longitude/latitude.
-vec2 shape_uv(vec3 p) {
+vec2 lab_shape_uv(vec3 p) {
     float u = atan(p.z, p.x) / (2.0 * PI) + 0.5;
     if (u_shape == 0) {
         vec2 q = vec2(length(p.xz) - 0.72, p.y);
@@ -50,17 +50,17 @@ vec2 shape_uv(vec3 p) {
 }
 
 // Procedural maps: a two-colour tiled albedo and wavy bands that vary the other parameters.
-vec3 albedo_map(vec2 uv) {
+vec3 lab_albedo_map(vec2 uv) {
     float tile = mod(floor(uv.x * 16.0) + floor(uv.y * 6.0), 2.0);
     return mix(vec3(0.75, 0.22, 0.08), vec3(0.9, 0.85, 0.7), tile);
 }
 
-float vary_map(vec2 uv) {
+float lab_vary_map(vec2 uv) {
     float s = 0.5 + 0.5 * sin(2.0 * PI * (uv.x * 5.0 + 0.4 * sin(2.0 * PI * uv.y * 3.0)));
     return smoothstep(0.3, 0.7, s);
 }
 
-vec3 sky(vec3 d) {
+vec3 lab_sky(vec3 d) {
     return mix(vec3(0.25, 0.22, 0.2), vec3(0.55, 0.7, 1.0), 0.5 + 0.5 * d.y);
 }
 
@@ -68,14 +68,14 @@ void main() {
     vec2 p = (gl_FragCoord.xy / u_resolution) * 2.0 - 1.0;
     vec3 eye = vec3(0.0, 0.0, 3.4);
     vec3 ray = normalize(vec3(p * 0.42, -1.0));
-    mat3 R = object_rotation();
+    mat3 R = lab_object_rotation();
     // March in object space: rotate the ray instead of the object.
     vec3 o = transpose(R) * eye;
     vec3 d = transpose(R) * ray;
     float t = 1.5;
     bool hit = false;
     for (int i = 0; i < 96; ++i) {
-        float dist = shape_distance(o + t * d);
+        float dist = lab_shape_distance(o + t * d);
         if (dist < 5e-4) {
             hit = true;
             break;
@@ -88,7 +88,7 @@ void main() {
         return;
     }
     vec3 q = o + t * d;
-    vec3 n_obj = shape_normal(q);
+    vec3 n_obj = lab_shape_normal(q);
     vec3 x_obj = u_shape == 0 ? vec3(-q.z, 0.0, q.x) : cross(vec3(0.0, 1.0, 0.0), n_obj);
     if (dot(x_obj, x_obj) < 1e-10) x_obj = vec3(1.0, 0.0, 0.0);
     vec3 N = normalize(R * n_obj);
@@ -96,11 +96,11 @@ void main() {
     X = normalize(X - N * dot(N, X));
     vec3 Y = cross(N, X);
     vec3 V = -ray;
-    vec2 uv = shape_uv(q);
+    vec2 uv = lab_shape_uv(q);
     // Not called `albedo`: models have parameters of that name.
-    vec3 texture_albedo = albedo_map(uv);
+    vec3 texture_albedo = lab_albedo_map(uv);
     if (u_mode == 3) {
-        sv_assign(vary_map(uv), texture_albedo);
+        sv_assign(lab_vary_map(uv), texture_albedo);
     } else {
         sv_assign(0.0, vec3(1.0));
     }
@@ -118,7 +118,7 @@ void main() {
     color += u_ambient * ((u_mode == 0 || u_mode == 2) ? diffuse : AMBIENT_REFLECTANCE());
     if (IS_DELTA && (u_mode == 1 || u_mode == 3)) {
         vec3 Rv = reflect(-V, N);
-        color += DELTA_REFLECTANCE(Rv, N, X, Y) * sky(Rv);
+        color += DELTA_REFLECTANCE(Rv, N, X, Y) * lab_sky(Rv);
     }
     frag_color = vec4(color, 1.0);
 }

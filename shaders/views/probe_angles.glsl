@@ -4,14 +4,14 @@
 uniform highp sampler2D u_angles;
 out vec4 frag_color;
 
-vec3 from_angles(float theta, float phi) {
+vec3 lab_from_angles(float theta, float phi) {
     float s = sin(theta);
     return vec3(s * cos(phi), s * sin(phi), cos(theta));
 }
 
 void main() {
     vec4 a = texelFetch(u_angles, ivec2(gl_FragCoord.xy), 0);
-    vec3 L = from_angles(a.x, a.y);
-    vec3 V = from_angles(a.z, a.w);
+    vec3 L = lab_from_angles(a.x, a.y);
+    vec3 V = lab_from_angles(a.z, a.w);
     frag_color = vec4(BRDF(L, V, vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0)), 1.0);
 }

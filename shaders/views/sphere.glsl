@@ -1,7 +1,7 @@
 // View: a unit sphere seen by an orthographic camera looking down -z (x right, y up).
 // LIGHT_COUNT (a constant from the host) directional lights, and ambient light u_ambient,
 // reflected by AMBIENT_REFLECTANCE() (the Phong illumination model's ka; 1 for other models).
-// A delta (mirror) model reflects the procedural environment of environment().
+// A delta (mirror) model reflects the procedural environment of lab_environment().
 uniform vec2 u_resolution;
 uniform vec3 u_light_dir[LAB_MAX_LIGHTS];
 uniform vec3 u_light_rgb[LAB_MAX_LIGHTS];
@@ -10,7 +10,7 @@ uniform bool u_multiply_cos;
 out vec4 frag_color;
 
 // Sky above the horizon (y > 0), a checkered floor below it, and a sun.
-vec3 environment(vec3 d) {
+vec3 lab_environment(vec3 d) {
     if (d.y >= 0.0) {
         vec3 sky = mix(vec3(0.85, 0.9, 1.0), vec3(0.2, 0.4, 0.85), sqrt(d.y));
         float sun = pow(max(dot(d, normalize(vec3(0.4, 0.7, 0.6))), 0.0), 400.0);
@@ -42,7 +42,7 @@ void main() {
     }
     if (IS_DELTA) {
         vec3 R = reflect(-V, N);
-        color += DELTA_REFLECTANCE(R, N, X, Y) * environment(R);
+        color += DELTA_REFLECTANCE(R, N, X, Y) * lab_environment(R);
     }
     frag_color = vec4(color, 1.0);
 }

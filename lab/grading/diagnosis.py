@@ -1,0 +1,240 @@
+"""What a failed check's numbers say about the mistake, in one or two plain sentences.
+
+Everything here is numpy on the values a check already has: the solution's (`expected`)
+and the student's (`got`) at the same direction pairs, plus the values of likely wrong
+programs (lab.grading.mistakes). It never names a mistake the values do not show: each
+test asks for the pattern on (nearly) every row, and says nothing otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from lab.grading.exercise import Check
+
+# Named factors, as a student would write them, and what their presence usually means.
+CONSTANTS = (
+    (math.pi, "π", "a factor 1/π is missing"),
+    (1.0 / math.pi, "1/π", "there is a 1/π too many"),
+    (2.0, "2", "a constant factor is off (2)"),
+    (4.0, "4", "a constant factor is off (4, as in 4·N·L·N·V)"),
+    (0.5, "1/2", "a constant factor is off (1/2)"),
+    (0.25, "1/4", "a constant factor is off (1/4, as in 4·N·L·N·V)"),
+)
+CHANNELS = ("red", "green", "blue")
+MATCH_SHARE = 0.98  # of the rows: a pattern must hold nearly everywhere to be named
+GRAZING = 65.0  # degrees: beyond this a direction counts as near grazing
+
+
+def within(check: Check, got: np.ndarray, want: np.ndarray, slack: float = 2.0) -> np.ndarray:
+    """Rows where `got` is within (a little more than) the check's tolerance of `want`."""
+    tol = slack * (check.atol + check.rtol * np.abs(want))
+    return (np.abs(np.nan_to_num(got, nan=1e30) - want) <= tol).all(axis=-1)
+
+
+def same(check: Check, got: np.ndarray, want: np.ndarray) -> bool:
+    """Nearly every row agrees: two programs that behave alike on this check."""
+    return bool(within(check, got, want).mean() >= MATCH_SHARE)
+
+
+def nearest(
+    check: Check, got: np.ndarray, candidates: dict[str, np.ndarray], wrong: np.ndarray
+) -> str | None:
+    """The candidate (a variant's values) the student's values agree with, if any: on
+    nearly every row, and on nearly every row where the student is wrong."""
+    best, best_share = None, MATCH_SHARE
+    for key, values in candidates.items():
+        if values.shape != got.shape:
+            continue
+        agree = within(check, got, values)
+        if wrong.any() and agree[wrong].mean() < 0.9:
+            continue
+        share = float(agree.mean())
+        if share >= best_share and (best is None or share > best_share):
+            best, best_share = key, share
+    return best
+
+
+def _spread(ratio: np.ndarray) -> tuple[float, float]:
+    """Median of the ratios and how far (90th percentile, relative) they stray from it."""
+    med = float(np.median(ratio))
+    if not math.isfinite(med) or med <= 0.0:
+        return med, math.inf
+    return med, float(np.percentile(np.abs(ratio / med - 1.0), 90))
+
+
+def _factor_name(value: float) -> tuple[str, str] | None:
+    for constant, name, cause in CONSTANTS:
+        if abs(value / constant - 1.0) < 0.02:
+            return name, cause
+    return None
+
+
+def _ratio_phrase(value: float) -> str:
+    """'every value is π times too large' / '... 4 times too small' / '1.37 times ...'."""
+    named = _factor_name(value)
+    if named and value > 1.0:
+        return f"every value is {named[0]} times too large — {named[1]}"
+    inverse = _factor_name(1.0 / value)
+    if inverse and value < 1.0:
+        return f"every value is {inverse[0]} times too small — {named[1] if named else ''}".rstrip(
+            " —"
+        )
+    word = "large" if value > 1.0 else "small"
+    times = value if value > 1.0 else 1.0 / value
+    return f"every value is {times:.3g} times too {word}: a constant factor is off"
+
+
+def cosines(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return np.cos(np.radians(angles[:, 0])), np.cos(np.radians(angles[:, 2]))
+
+
+def shape(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray) -> str:
+    """The pattern of the error in a few words, or '' when none is clear."""
+    got = np.asarray(got, dtype=np.float64)
+    expected = np.asarray(expected, dtype=np.float64)
+    wrong = ~within(check, got, expected, slack=1.0)
+    if not wrong.any():
+        return ""
+    if not np.isfinite(got).all():
+        return (
+            "some values are NaN or infinite — a division by zero or the pow/sqrt of a "
+            "negative number; guard them with max(..., EPS)"
+        )
+    negative = (got < 0.0).any(axis=-1)
+    if negative.any():
+        where = "where the solution is 0" if (expected[negative] <= 0.0).all() else "in places"
+        return (
+            f"{int(negative.sum())} values are negative {where} — a dot product is not "
+            "clamped (max(..., 0.0)) or the below-the-surface test is missing"
+        )
+    zero = (expected <= 0.0).all(axis=-1)
+    if zero[wrong].all():
+        return (
+            "the values are wrong only where the solution is 0 (light or view below the "
+            "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0"
+        )
+    for phrase in (
+        _ratio(check, angles, expected, got),
+        _one_channel(check, expected, got, wrong),
+        _grazing(angles, wrong, zero),
+    ):
+        if phrase:
+            return phrase
+    return ""
+
+
+def _ratio(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray) -> str:
+    """A constant factor, or one of cos θi, cos θo, their inverses, √(cos θi cos θo)."""
+    floor = 20.0 * check.atol
+    use = (expected > floor) & (got > 0.0)
+    rows = use.all(axis=-1)
+    if rows.sum() < max(8, 0.3 * len(rows)):
+        return ""
+    ratio = got[rows] / expected[rows]
+    med, spread = _spread(ratio.ravel())
+    if spread < 0.01 and abs(med - 1.0) > 3 * check.rtol:
+        return _ratio_phrase(med)
+    cos_i, cos_o = cosines(angles[rows])
+    factors = (
+        (cos_i, "an extra factor cos θi (N·L) — the renderer multiplies by N·L itself"),
+        (cos_o, "an extra factor cos θo (N·V)"),
+        (1.0 / cos_i, "divided by cos θi (N·L) once too often"),
+        (1.0 / cos_o, "divided by cos θo (N·V) once too often"),
+        (np.sqrt(cos_i * cos_o), "an extra factor √(cos θi cos θo)"),
+        (1.0 / np.sqrt(cos_i * cos_o), "divided by √(cos θi cos θo) once too often"),
+    )
+    for factor, words in factors:
+        if np.std(factor) < 0.05:
+            continue
+        med, spread = _spread((ratio / factor[:, None]).ravel())
+        if spread < 0.01:
+            scale = "" if abs(med - 1.0) < 0.02 else f" (and a constant factor {med:.3g})"
+            return f"the values are off by {words}{scale}"
+    return ""
+
+
+def _one_channel(check: Check, expected: np.ndarray, got: np.ndarray, wrong: np.ndarray) -> str:
+    """Grey where the solution is coloured, or only one channel off."""
+    per_channel = np.abs(got - expected) > check.atol + check.rtol * np.abs(expected)
+    coloured = np.ptp(expected, axis=-1) > 0.05 * np.max(expected, axis=-1) + check.atol
+    grey = np.ptp(got, axis=-1) <= 1e-6 * (1.0 + np.max(np.abs(got), axis=-1))
+    if coloured[wrong].any() and grey[wrong & coloured].all() and grey.mean() > 0.9:
+        return (
+            "the result is grey where the solution is coloured — a float is used where a "
+            "colour (vec3) belongs, e.g. one channel of a colour parameter"
+        )
+    channels = per_channel.any(axis=0)
+    if channels.sum() == 1:
+        return f"only the {CHANNELS[int(np.argmax(channels))]} channel is wrong"
+    return ""
+
+
+def _grazing(angles: np.ndarray, wrong: np.ndarray, zero: np.ndarray) -> str:
+    """Wrong only where light or view is near grazing, right everywhere else."""
+    steep = np.maximum(angles[:, 0], angles[:, 2]) > GRAZING
+    elsewhere = ~steep & ~zero
+    if elsewhere.sum() >= 8 and not wrong[elsewhere].any() and wrong[steep].any():
+        return (
+            f"the values are right except near grazing (θ above {GRAZING:g}°) — check "
+            "the terms that matter there: Fresnel, G and the N·L·N·V denominator"
+        )
+    return ""
+
+
+def lobe(check: Check, theta: np.ndarray, expected: list, got: list, params: dict) -> str:
+    """For a polar curve: the peak in the wrong place, or a lobe too wide or too narrow."""
+    theta = np.asarray(theta)
+    e, g = np.asarray(expected, dtype=float), np.asarray(got, dtype=float)
+    side = theta >= 0.0  # the reflection side of the plane of incidence
+    e, g, t = e[side], g[side], theta[side]
+    if not np.isfinite(g).all() or e.max() <= 0.0 or g.max() <= 0.0:
+        return ""
+    e_peak, g_peak = float(t[np.argmax(e)]), float(t[np.argmax(g)])
+    # A lobe must rise clearly above its ends to have a peak worth naming.
+    peaked = g.max() > 1.5 * min(g[0], g[-1]) + check.atol and e.max() > 1.5 * min(e[0], e[-1])
+    if not peaked:
+        return ""
+    if abs(e_peak - g_peak) >= 3.0 and 0 < g_peak < t.max():
+        return (
+            f"the lobe peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}° — check the "
+            "reflected direction (or the half vector) and which vectors enter it"
+        )
+    e_width, g_width = _half_width(t, e), _half_width(t, g)
+    if not (e_width and g_width) or abs(g_width / e_width - 1.0) < 0.2:
+        return ""
+    words = "too wide" if g_width > e_width else "too narrow"
+    text = f"the lobe is {max(g_width, e_width) / min(g_width, e_width):.2g} times {words}"
+    if "ke" in params:  # cos^n: half maximum where cos(a)^n = 1/2
+        fit = math.log(0.5) / math.log(math.cos(math.radians(min(g_width / 2, 89.0))))
+        text += f" — it behaves like an exponent of about {fit:.3g} instead of {params['ke']:g}"
+    elif "m" in params:
+        text += f" — as if the roughness were about {params['m'] * g_width / e_width:.2g}"
+        text += f" instead of {params['m']:g}"
+    return text
+
+
+def _half_width(theta: np.ndarray, values: np.ndarray) -> float:
+    """Full width at half height above the curve's floor, in degrees (0 if unclear)."""
+    floor = float(values.min())
+    half = floor + 0.5 * (float(values.max()) - floor)
+    above = np.nonzero(values >= half)[0]
+    if len(above) < 2 or len(above) == len(values):
+        return 0.0
+    return float(theta[above[-1]] - theta[above[0]]) or 1.0
+
+
+def terms_sentence(wrong: list[str], right: list[str], detail: str) -> str:
+    """'the specular term is wrong (the diffuse term is right): every value ...'."""
+    text = f"the {' and '.join(wrong)} term{'s are' if len(wrong) > 1 else ' is'} wrong"
+    if right:
+        text += f" (the {' and '.join(right)} term{'s are' if len(right) > 1 else ' is'} right)"
+    return text + (f": {detail}" if detail else "")
+
+
+def sentence(text: str) -> str:
+    """'Likely: ...' with a capital-free start and one final full stop."""
+    text = text.strip().rstrip(".")
+    return f"Likely: {text}." if text else ""

@@ -1,0 +1,252 @@
+"""The diagnosis of a failed check, with the renders it needs (runs in the grading worker).
+
+Order of evidence, best first: a known mistake or single-edit mutant whose values the
+student's match (its hint); which declared term is wrong and the shape of its error; the
+shape of the whole error; L and V or the X and Y axes swapped; the lobe's peak or width.
+Nothing matches: nothing is said.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from lab.glsl import ShaderCompileError
+from lab.grading import diagnosis, mistakes
+from lab.grading.checks import (
+    Grader,
+    expected_value,
+    polar_angles,
+    probe_angles,
+    render,
+    tonemap,
+)
+from lab.grading.exercise import Check, Exercise, ExerciseError, SubmissionError, build_model
+from lab.models import Model, ModelError
+
+
+def angles_of(check: Check) -> np.ndarray | None:
+    if check.kind == "probe":
+        return probe_angles(check)
+    if check.kind == "polar":
+        return polar_angles(check)
+    return None
+
+
+def differs(check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
+    """Would these values fail the check against the reference?"""
+    if check.kind == "sphere":
+        return _sphere_share(check, reference, values) > check.max_fraction
+    return not diagnosis.same(check, values, reference) or bool(
+        (~np.isfinite(values)).any() or (values < 0).any()
+    )
+
+
+def _sphere_share(check: Check, image8: np.ndarray, other8: np.ndarray) -> float:
+    covered = image8[..., 3] > 127
+    diff = np.abs(image8[..., :3].astype(int) - other8[..., :3].astype(int)).max(axis=-1)
+    return float((diff[covered] > check.threshold).mean()) if covered.any() else 0.0
+
+
+# -- references: the variants' values, rendered from the solution ----------------------------
+def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
+    """Write references/diagnosis.npz and diagnosis.json (hints and terms) for an exercise."""
+    solution = exercise.solution.read_text(encoding="utf-8")
+    references = {
+        c.name: expected_value(render(grader.renderer, grader.solution_model(exercise), c), c)
+        for c in exercise.checks
+    }
+    values: dict[str, np.ndarray] = {}
+    hints: dict[str, str] = {}
+    kept: list[dict[str, np.ndarray]] = []
+    by_name = {c.name: c for c in exercise.checks}
+    for variant in mistakes.variants(exercise, solution):
+        model = _variant_model(exercise, variant, solution)
+        if model is None:
+            if variant.key.startswith("mistake."):
+                raise ExerciseError(f"{mistakes.mistakes_file(exercise)}: {variant.key} fails")
+            continue
+        mine = {}
+        for check in exercise.checks:
+            try:
+                got = expected_value(render(grader.renderer, model, check), check)
+            except (ShaderCompileError, ModelError):
+                mine = {}
+                break
+            if differs(check, got, references[check.name]):
+                mine[check.name] = got
+        duplicate = any(
+            mine.keys() == other.keys()
+            and all(not differs(by_name[n], mine[n], other[n]) for n in mine)
+            for other in kept
+        )
+        if not mine or (duplicate and variant.key.startswith("mutant.")):
+            continue
+        kept.append(mine)
+        hints[variant.key] = variant.hint
+        values.update({f"{name}|{variant.key}": v for name, v in mine.items()})
+    terms = mistakes.declared_terms(exercise)
+    model = grader.solution_model(exercise)
+    for check in exercise.checks:
+        if check.kind == "sphere":
+            continue
+        for name, overrides in terms.items():
+            term_check = replace(check, params={**check.params, **overrides})
+            values[f"{check.name}|term.{name}"] = render(grader.renderer, model, term_check)
+    folder = exercise.references
+    np.savez_compressed(folder / mistakes.VALUES, **values)
+    return [folder / mistakes.VALUES, mistakes.write_hints(exercise, hints, terms)]
+
+
+def _variant_model(exercise: Exercise, variant: mistakes.Variant, solution: str) -> Model | None:
+    try:
+        return build_model(exercise, exercise.solution, variant.apply(solution))
+    except (SubmissionError, ExerciseError, ModelError):
+        return None
+
+
+# -- grading: explain one failed check ------------------------------------------------------
+class Explainer:
+    """Per worker: the stored variant values and the live-rendered variants, cached."""
+
+    def __init__(self, grader: Grader) -> None:
+        self.grader = grader
+        self._stored: dict[Path, dict[str, np.ndarray]] = {}
+        self._models: dict[tuple[Path, str], Model | None] = {}
+
+    def stored(self, exercise: Exercise) -> dict[str, np.ndarray]:
+        folder = exercise.references
+        if folder not in self._stored:
+            path = folder / mistakes.VALUES
+            try:
+                with np.load(path) as data:
+                    self._stored[folder] = {k: data[k] for k in data.files}
+            except (OSError, ValueError):
+                self._stored[folder] = {}
+        return self._stored[folder]
+
+    def candidates(self, exercise: Exercise, check: Check, live: bool) -> dict[str, np.ndarray]:
+        """The variants' values for this check: stored, or (hidden mode) rendered now."""
+        if not live:
+            prefix = f"{check.name}|"
+            return {
+                k[len(prefix) :]: v
+                for k, v in self.stored(exercise).items()
+                if k.startswith(prefix) and not k.startswith(prefix + "term.")
+            }
+        found = {}
+        solution = exercise.solution.read_text(encoding="utf-8")
+        for variant in mistakes.known_mistakes(exercise):
+            key = (exercise.solution, variant.key)
+            if key not in self._models:
+                self._models[key] = _variant_model(exercise, variant, solution)
+            model = self._models[key]
+            if model is not None:
+                try:
+                    found[variant.key] = expected_value(
+                        render(self.grader.renderer, model, check), check
+                    )
+                except (ShaderCompileError, ModelError):
+                    continue
+        return found
+
+    def explain(
+        self,
+        exercise: Exercise,
+        check: Check,
+        model: Model,
+        expected: np.ndarray,
+        raw: np.ndarray,
+        live: bool,
+    ) -> str:
+        """'Likely: ...' for a failed check, or '' when the evidence names nothing."""
+        hints = mistakes.read_hints(exercise)
+        got = raw if check.kind != "sphere" else _tonemapped(raw)
+        candidates = {
+            k: v
+            for k, v in self.candidates(exercise, check, live).items()
+            if k in hints and (not live or differs(check, v, expected))
+        }
+        if check.kind == "sphere":
+            key = _nearest_image(check, got, candidates)
+            return diagnosis.sentence(hints[key]) if key else ""
+        wrong = ~diagnosis.within(check, got, expected, slack=1.0)
+        key = diagnosis.nearest(check, got, candidates, wrong)
+        if key:
+            return diagnosis.sentence(hints[key])
+        angles = angles_of(check)
+        text = self._terms(exercise, check, model, angles, live)
+        text = text or diagnosis.shape(check, angles, expected, got)
+        text = text or self._swaps(check, model, angles, expected)
+        if not text and check.kind == "polar":
+            theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
+            lum = np.array([0.2126, 0.7152, 0.0722])
+            text = diagnosis.lobe(
+                check, theta, expected @ lum, np.nan_to_num(got) @ lum, check.params
+            )
+        return diagnosis.sentence(text)
+
+    def _terms(
+        self, exercise: Exercise, check: Check, model: Model, angles: np.ndarray, live: bool
+    ) -> str:
+        """Evaluate each declared term alone; name the wrong one and the shape of its error."""
+        terms = mistakes.read_terms(exercise)
+        if len(terms) < 2:
+            return ""
+        wrong, right, detail = [], [], ""
+        for name, overrides in terms.items():
+            term_check = replace(check, params={**check.params, **overrides})
+            if live:
+                solution = self.grader.solution_model(exercise)
+                want = render(self.grader.renderer, solution, term_check)
+            else:
+                want = self.stored(exercise).get(f"{check.name}|term.{name}")
+                if want is None:
+                    return ""
+            mine = render(self.grader.renderer, model, term_check)
+            if diagnosis.within(check, mine, want, slack=1.0).all():
+                right.append(name)
+            else:
+                wrong.append(name)
+                detail = detail or diagnosis.shape(term_check, angles, want, mine)
+        if not wrong or not right:
+            return ""
+        return diagnosis.terms_sentence(wrong, right, detail if len(wrong) == 1 else "")
+
+    def _swaps(self, check: Check, model: Model, angles: np.ndarray, expected) -> str:
+        """L and V exchanged, or the tangent axes X and Y: render the swap and compare."""
+        renderer = self.grader.renderer
+        got = renderer.eval_angles(model, check.params, angles)
+        if diagnosis.same(check, got, expected):
+            return ""  # nearly right: a swap would look right too, and say nothing
+        swapped = renderer.eval_angles(model, check.params, angles[:, [2, 3, 0, 1]])
+        if diagnosis.same(check, swapped, expected) and not diagnosis.same(check, swapped, got):
+            return (
+                "your BRDF(L, V) gives the solution's BRDF(V, L) — L and V are swapped "
+                "somewhere (the solution is not symmetric in them)"
+            )
+        mirrored = angles.copy()
+        mirrored[:, [1, 3]] = (90.0 - angles[:, [1, 3]]) % 360.0
+        axes = renderer.eval_angles(model, check.params, mirrored)
+        if diagnosis.same(check, axes, expected) and not diagnosis.same(check, axes, got):
+            return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y"
+        return ""
+
+
+def _tonemapped(raw: np.ndarray) -> np.ndarray:
+    rgb = (np.clip(tonemap(raw[..., :3]), 0, 1) * 255.0 + 0.5).astype(np.uint8)
+    alpha = (np.clip(raw[..., 3:], 0, 1) * 255 + 0.5).astype(np.uint8)
+    return np.concatenate([rgb, alpha], axis=-1)
+
+
+def _nearest_image(check: Check, image8: np.ndarray, candidates: dict) -> str | None:
+    best, best_share = None, 1.0
+    for key, other in candidates.items():
+        if other.shape != image8.shape:
+            continue
+        share = _sphere_share(check, other, image8)
+        if share <= max(check.max_fraction, 0.002) and share < best_share:
+            best, best_share = key, share
+    return best

@@ -1,0 +1,235 @@
+"""Known mistakes and single-edit mutants of a solution: the grader's error model.
+
+After Singh, Gulwani and Solar-Lezama (PLDI 2013, "Automated feedback generation for
+introductory programming assignments"): a wrong submission is compared with likely wrong
+programs, each carrying a hint for the student. Two sources:
+
+- `solutions/NN_topic/mistakes.toml` lists the common mistakes an instructor has seen, each
+  a few text edits of the solution with a hint written for students;
+- `mutants()` makes single edits of the solution mechanically (a dot product for another,
+  a dropped 1/pi, a wrong constant) and words a hint from the edit.
+
+Their values for every check are rendered with the references (`references/diagnosis.npz`,
+hints in `references/diagnosis.json`; no solution code is stored beside the exercise), and
+live in hidden mode. Everything here runs without OpenGL.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from lab.grading.exercise import Exercise, ExerciseError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+MISTAKES_FILE = "mistakes.toml"
+VALUES = "diagnosis.npz"
+HINTS = "diagnosis.json"
+MAX_MUTANTS = 24  # per exercise: each one costs a compile when references are made
+
+# How each name of a dot product or constant reads in a hint.
+SPOKEN = {
+    "NoL": "N·L",
+    "NoV": "N·V",
+    "NoH": "N·H",
+    "VoH": "V·H",
+    "LoH": "L·H",
+    "RoV": "R·V",
+    "INV_PI": "1/π",
+    "PI": "π",
+}
+DOTS = ("NoL", "NoV", "NoH", "VoH", "LoH", "RoV")
+CONSTANTS = {"2.0": "4.0", "4.0": "2.0", "0.5": "1.0", "8.0": "4.0", "0.25": "0.5"}
+
+
+@dataclass(frozen=True)
+class Variant:
+    """A likely wrong program: the solution with `edits` applied, and its hint."""
+
+    key: str  # mistake.N (from mistakes.toml) or mutant.N (generated)
+    hint: str
+    edits: tuple[tuple[str, str], ...]
+
+    def apply(self, code: str) -> str:
+        """The solution with the edits made below its comment header (never in it)."""
+        start = _code_start(code)
+        head, body = code[:start], code[start:]
+        for old, new in self.edits:
+            if old not in body:
+                raise ExerciseError(f"{self.key}: {old!r} is not in the solution")
+            body = body.replace(old, new, 1)
+        return head + body
+
+
+def mistakes_file(exercise: Exercise) -> Path:
+    return exercise.solution.parent / MISTAKES_FILE
+
+
+def known_mistakes(exercise: Exercise) -> list[Variant]:
+    """The instructor's list for an exercise (none when the file does not exist)."""
+    path = mistakes_file(exercise)
+    if not path.is_file():
+        return []
+    try:
+        spec = tomllib.loads(path.read_text(encoding="utf-8"))
+        found = []
+        for number, raw in enumerate(spec.get("mistake", [])):
+            edits = tuple((str(old), str(new)) for old, new in raw["edits"])
+            found.append(Variant(f"mistake.{number}", str(raw["hint"]).strip(), edits))
+    except (tomllib.TOMLDecodeError, KeyError, TypeError, ValueError) as err:
+        raise ExerciseError(f"{path}: malformed mistake list ({err})") from None
+    return found
+
+
+def _code_start(code: str) -> int:
+    """Offset of the first line that is not a comment: mutants never edit the header."""
+    offset = 0
+    for line in code.splitlines(keepends=True):
+        if line.strip() and not line.lstrip().startswith("//"):
+            return offset
+        offset += len(line)
+    return offset
+
+
+def _single_edit(code: str, start: int, end: int, new: str) -> tuple[str, str]:
+    """An edit as (old, new) text pairs that `Variant.apply` finds exactly once: the whole
+    line it is on, so that the first occurrence of the line is the one meant."""
+    line_start = code.rfind("\n", 0, start) + 1
+    line_end = code.find("\n", end)
+    line_end = len(code) if line_end < 0 else line_end
+    old_line = code[line_start:line_end]
+    new_line = code[line_start:start] + new + code[end:line_end]
+    return old_line, new_line
+
+
+def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
+    """Single-edit variants of the solution's code, each with a hint worded from the edit.
+
+    Edits whose line occurs twice in the file are skipped (their place would be ambiguous);
+    duplicates and variants equal to the solution are removed later, by their values.
+    """
+    start = _code_start(code)
+    body = code[start:]
+    seen_lines = {}
+    for line in body.splitlines():
+        seen_lines[line] = seen_lines.get(line, 0) + 1
+    present = [d for d in DOTS if re.search(rf"\b{d}\b", body)]
+    found: list[Variant] = []
+
+    def add(match_start: int, match_end: int, new: str, hint: str) -> None:
+        old_line, new_line = _single_edit(code, match_start, match_end, new)
+        if seen_lines.get(old_line, 0) != 1 or old_line.lstrip().startswith("//"):
+            return
+        if old_line.lstrip().startswith(("float ", "vec3 ")) and "(" in old_line.split("=")[0]:
+            return  # a function's signature: a compile error, not a mistake
+        edits = ((old_line, new_line),)
+        if all(v.edits != edits for v in found):
+            found.append(Variant(f"mutant.{len(found)}", hint, edits))
+
+    for match in re.finditer(r"\b(" + "|".join(present) + r")\b", body) if present else []:
+        name = match.group(1)
+        if re.match(r"\s*=[^=]", body[match.end() :]):  # its own definition
+            continue
+        for other in present:
+            if other != name:
+                hint = (
+                    f"a term behaves like {SPOKEN[other]} where {SPOKEN[name]} belongs: "
+                    f"check which dot product each factor uses"
+                )
+                add(start + match.start(), start + match.end(), other, hint)
+    for match in re.finditer(r"\s*\*\s*INV_PI\b|\bINV_PI\s*\*\s*", body):
+        add(
+            start + match.start(),
+            start + match.end(),
+            "",
+            "a factor 1/π is missing: every value of that term is π times too large",
+        )
+    for match in re.finditer(r"\bPI\s*\*\s*", body):
+        add(
+            start + match.start(),
+            start + match.end(),
+            "",
+            "a factor π is missing from a denominator: that term is π times too large",
+        )
+    for match in re.finditer(r"(?<![\w.])(\d+\.\d+)(?![\w.])", body):
+        wrong = CONSTANTS.get(match.group(1))
+        if wrong:
+            add(
+                start + match.start(),
+                start + match.end(),
+                wrong,
+                f"a constant is off: the values behave as if {wrong.rstrip('0').rstrip('.')} "
+                f"stood where {match.group(1).rstrip('0').rstrip('.')} belongs",
+            )
+    for match in re.finditer(r"\bdot\((\w+), (\w+)\)", body):
+        a, b = match.groups()
+        for x, y in (("L", "V"), ("V", "L"), ("L", "H"), ("V", "H")):
+            if b == x:
+                hint = f"a dot product uses {y} where {x} belongs ({a}·{y} instead of {a}·{x})"
+                add(start + match.start(), start + match.end(), f"dot({a}, {y})", hint)
+    for match in re.finditer(r"max\((dot\([^()]*\)), (0\.0|EPS)\)", body):
+        add(
+            start + match.start(),
+            start + match.end(),
+            match.group(1),
+            "a dot product is not clamped: it goes negative past 90° (use max(..., 0.0))",
+        )
+    return found[:limit]
+
+
+def variants(exercise: Exercise, code: str) -> list[Variant]:
+    """Known mistakes first (their hints are the better ones), then the generated mutants."""
+    return known_mistakes(exercise) + mutants(code)
+
+
+def declared_terms(exercise: Exercise) -> dict[str, dict]:
+    """The terms an exercise can show alone, as parameter settings (`[terms]` in the list)."""
+    path = mistakes_file(exercise)
+    if not path.is_file():
+        return {}
+    spec = tomllib.loads(path.read_text(encoding="utf-8"))
+    return {
+        name: {k: tuple(v) if isinstance(v, list) else v for k, v in params.items()}
+        for name, params in spec.get("terms", {}).items()
+    }
+
+
+def _stored(exercise: Exercise) -> dict:
+    path = exercise.references / HINTS
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+
+
+def read_hints(exercise: Exercise) -> dict[str, str]:
+    """The stored hints by variant key ({} when the references have none)."""
+    hints = _stored(exercise).get("hints", {})
+    return {str(k): str(v) for k, v in hints.items()} if isinstance(hints, dict) else {}
+
+
+def read_terms(exercise: Exercise) -> dict[str, dict]:
+    """The stored terms: name -> parameter settings that show that term alone."""
+    terms = _stored(exercise).get("terms", {})
+    return (
+        {
+            str(name): {k: tuple(v) if isinstance(v, list) else v for k, v in params.items()}
+            for name, params in terms.items()
+        }
+        if isinstance(terms, dict)
+        else {}
+    )
+
+
+def write_hints(exercise: Exercise, hints: dict[str, str], terms: dict[str, dict]) -> Path:
+    path = exercise.references / HINTS
+    data = {"hints": hints, "terms": terms}
+    path.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n", "utf-8")
+    return path

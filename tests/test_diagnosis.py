@@ -1,0 +1,302 @@
+"""The grader's diagnoses: realistic wrong submissions get the right "Likely: ..." sentence,
+equivalent rewrites get none, and every stored mistake gets its own hint back.
+
+The corpus is written as a student would write the mistake, not copied from the stored
+mistakes (solutions/NN/mistakes.toml), so a match shows that the values, not the text,
+identify the mistake.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lab.grading import diagnosis, mistakes
+from lab.grading.exercise import Check, find_exercises
+from lab.grading.runner import Pool, Task
+
+ROOT = Path(__file__).resolve().parent.parent
+EXERCISES = {e.name: e for e in find_exercises(ROOT / "exercises")}
+GOAL = 0.8
+
+# (exercise, label, [(text in the solution, the student's text)], words the diagnosis names)
+CORPUS = [
+    ("02_phong", "no 1/pi", [("kd * INV_PI + ks", "kd + ks")], "1/π"),
+    ("02_phong", "reflect(L, N)", [("2.0 * NoL * N - L", "reflect(L, N)")], "reflect"),
+    ("02_phong", "unclamped R.V", [("max(dot(R, V), 0.0)", "dot(V, R)")], "not clamped"),
+    (
+        "02_phong",
+        "cosine inside",
+        [("kd * INV_PI + ks * pow(RoV, ke)", "kd * INV_PI * NoL + ks * pow(RoV, ke) * NoL")],
+        "multiplied by N·L",
+    ),
+    (
+        "02_phong",
+        "no horizon test",
+        [("if (NoL <= 0.0 || NoV <= 0.0) return vec3(0.0);", "// no test")],
+        "below the surface",
+    ),
+    ("02_phong", "extra 1/pi on ks", [("ks * pow(RoV, ke)", "ks * pow(RoV, ke) / PI")], "1/π"),
+    ("03_blinn_phong", "H not normalised", [("normalize(L + V)", "L + V")], "not normalised"),
+    ("03_blinn_phong", "no 1/pi", [("kd * INV_PI", "kd")], "1/π"),
+    ("03_blinn_phong", "V.H", [("dot(N, H)", "dot(H, V)")], "V·H"),
+    ("03_blinn_phong", "cosine inside", [("+ ks * pow(NoH, ke)", "+ ks * pow(NoH, ke) * NoL")], ""),
+    (
+        "03_blinn_phong",
+        "Phong instead",
+        [("max(dot(N, H), 0.0)", "max(dot(reflect(-L, N), V), 0.0)")],
+        "Phong",
+    ),
+    ("04_phong_illumination", "no ambient", [("ka * ambient", "vec3(0.0)")], "ambient"),
+    (
+        "04_phong_illumination",
+        "first light only",
+        [
+            (
+                "for (int l = 0; l < 8; ++l) {\n        if",
+                "for (int l = 0; l < 1; ++l) {\n        if",
+            )
+        ],
+        "first light",
+    ),
+    ("04_phong_illumination", "no N.L", [("kd * NoL + ks", "kd + ks")], "N·L"),
+    ("04_phong_illumination", "no light colour", [("light_rgb[l] * (", "(")], "colour"),
+    (
+        "04_phong_illumination",
+        "ambient with kd",
+        [("vec3 color = ka * ambient;", "vec3 color = ambient * kd;")],
+        "ka, not kd",
+    ),
+    (
+        "05_ward",
+        "axes swapped",
+        [
+            ("dot(H, X) / alpha_x", "dot(H, Y) / alpha_x"),
+            ("dot(H, Y) / alpha_y", "dot(H, X) / alpha_y"),
+        ],
+        "swapped",
+    ),
+    ("05_ward", "no sqrt", [("sqrt(NoL * NoV)", "NoL * NoV")], "√(N·L N·V)"),
+    ("05_ward", "no 4", [("4.0 * PI * alpha_x", "PI * alpha_x")], "4"),
+    ("05_ward", "no 1/pi", [("kd * INV_PI", "kd")], "1/π"),
+    ("05_ward", "no 1/cos^2", [(" / (NoH * NoH)", "")], "(N·H)²"),
+    (
+        "06_microfacet_distributions",
+        "pi m^2 cos^4",
+        [("4.0 * m2 * c2 * c2", "PI * m2 * pow(NoH, 4.0)")],
+        "1/(π m² cos⁴θh)",
+    ),
+    ("06_microfacet_distributions", "cos^2", [("(4.0 * m2 * c2 * c2)", "(4.0 * m2 * c2)")], "cos⁴"),
+    (
+        "06_microfacet_distributions",
+        "degrees",
+        [("cos(beta)", "cos(beta * PI / 180.0)")],
+        "radians",
+    ),
+    (
+        "06_microfacet_distributions",
+        "Blinn unnormalised",
+        [("(e + 2.0) / 8.0 * pow(max(NoH, 0.0), e)", "pow(max(NoH, 0.0), e)")],
+        "normaliser",
+    ),
+    ("06_microfacet_distributions", "alpha = N.H", [("angle_from_cos(NoH)", "NoH")], "acos"),
+    ("07_geometric_attenuation", "no min 1", [("min(1.0, min(", "(min(")], "min(1.0"),
+    (
+        "07_geometric_attenuation",
+        "masking only",
+        [("min(g * NoV, g * NoL)", "NoV * g")],
+        "shadowing",
+    ),
+    (
+        "07_geometric_attenuation",
+        "fraction upside down",
+        [("2.0 * NoH / max(VoH, EPS)", "2.0 * VoH / max(NoH, EPS)")],
+        "swapped",
+    ),
+    (
+        "07_geometric_attenuation",
+        "max",
+        [("min(g * NoV, g * NoL)", "max(g * NoL, g * NoV)")],
+        "min",
+    ),
+    ("07_geometric_attenuation", "no 2", [("2.0 * NoH", "NoH")], "2"),
+    ("08_fresnel", "fourth power", [("(k2 * k2 * k)", "pow(k, 4.0)")], "fourth power"),
+    ("08_fresnel", "no 1 minus", [("1.0 - clamp(VoH, 0.0, 1.0)", "clamp(VoH, 0.0, 1.0)")], "1 −"),
+    ("08_fresnel", "no 1/2", [("return 0.5 * a * a", "return a * a")], "1/2"),
+    ("08_fresnel", "n not squared", [("ior * ior - 1.0", "ior - 1.0")], "squared"),
+    (
+        "08_fresnel",
+        "grey f0",
+        [
+            (
+                "return f0 + (vec3(1.0) - f0) * (k2 * k2 * k);",
+                "return vec3(f0.x + (1.0 - f0.x) * pow(k, 5.0));",
+            )
+        ],
+        "colour",
+    ),
+    ("09_cook_torrance", "F(N.L)", [("fresnel_F(VoH)", "fresnel_F(NoL)")], "V·H"),
+    (
+        "09_cook_torrance",
+        "no denominator",
+        [("(D * G / (PI * NoL * NoV))", "D * G / PI")],
+        "denominator",
+    ),
+    (
+        "09_cook_torrance",
+        "no G",
+        [("(D * G / (PI * NoL * NoV))", "(D / (PI * NoL * NoV))")],
+        "G is missing",
+    ),
+    ("09_cook_torrance", "4 N.L N.V", [("PI * NoL * NoV", "4.0 * NoL * NoV")], "4·N·L·N·V"),
+    ("09_cook_torrance", "no 1/pi", [("kd * INV_PI", "kd")], "1/π"),
+]
+
+# Rewrites that are correct: they must pass and get no diagnosis at all.
+EQUIVALENT = [
+    ("02_phong", [("2.0 * NoL * N - L", "reflect(-L, N)"), ("kd * INV_PI", "kd / PI")]),
+    ("03_blinn_phong", [("max(dot(N, H), 0.0)", "clamp(dot(H, N), 0.0, 1.0)")]),
+    ("05_ward", [("sqr(dot(H, X) / alpha_x)", "dot(H, X) * dot(H, X) / (alpha_x * alpha_x)")]),
+    ("06_microfacet_distributions", [("angle_from_cos(NoH)", "acos(clamp(NoH, -1.0, 1.0))")]),
+    (
+        "07_geometric_attenuation",
+        [("min(1.0, min(g * NoV, g * NoL))", "min(1.0, g * min(NoV, NoL))")],
+    ),
+    ("08_fresnel", [("(k2 * k2 * k)", "pow(k, 5.0)")]),
+    ("09_cook_torrance", [("kd * INV_PI", "kd / PI")]),
+]
+
+
+def write(tmp: Path, name: str, label: str, edits) -> Path:
+    exercise = EXERCISES[name]
+    text = exercise.solution.read_text(encoding="utf-8")
+    for old, new in edits:
+        at = text.rfind(old)  # the code, not the header's formula
+        assert at >= 0, f"{name}: {old!r} is not in the solution"
+        text = text[:at] + new + text[at + len(old) :]
+    path = tmp / f"{name}-{label.replace(' ', '_').replace('/', '_')}" / exercise.student_file
+    path.parent.mkdir(parents=True)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory) -> dict[tuple, Task]:
+    tmp = tmp_path_factory.mktemp("corpus")
+    tasks = {}
+    for name, label, edits, _ in CORPUS:
+        tasks["corpus", name, label] = Task(EXERCISES[name], write(tmp, name, label, edits))
+    for number, (name, edits) in enumerate(EQUIVALENT):
+        tasks["equivalent", name, number] = Task(
+            EXERCISES[name], write(tmp, name, f"eq{number}", edits)
+        )
+    for exercise in EXERCISES.values():
+        solution = exercise.solution.read_text(encoding="utf-8")
+        for variant in mistakes.known_mistakes(exercise):
+            path = tmp / f"{exercise.name}-{variant.key}" / exercise.student_file
+            path.parent.mkdir(parents=True)
+            path.write_text(variant.apply(solution), encoding="utf-8")
+            tasks["stored", exercise.name, variant.key] = Task(exercise, path)
+    with Pool(2, timeout=20.0) as pool:
+        pool.run(list(tasks.values()))
+    return tasks
+
+
+def diagnoses(task: Task) -> list[str]:
+    return [r.diagnosis for r in task.checks() if r.diagnosis]
+
+
+def test_corpus_has_five_wrong_submissions_per_exercise():
+    for number in range(2, 10):
+        name = next(n for n in EXERCISES if n.startswith(f"0{number}_"))
+        assert sum(1 for c in CORPUS if c[0] == name) >= 5, name
+
+
+def test_share_of_the_corpus_diagnosed_correctly(graded):
+    right, report = 0, []
+    for name, label, _, words in CORPUS:
+        task = graded["corpus", name, label]
+        assert task.score < task.max_score, f"{name} '{label}' got full marks"
+        said = diagnoses(task)
+        ok = bool(said) and any(words in d for d in said)
+        right += ok
+        report.append(f"{'ok ' if ok else 'MISS'} {name} {label}: {said[:1]}")
+    share = right / len(CORPUS)
+    print(f"\ndiagnosed correctly: {right} of {len(CORPUS)} ({100 * share:.0f}%)")
+    print("\n".join(report))
+    assert share >= GOAL, "\n".join(report)
+
+
+def test_equivalent_rewrites_pass_without_a_diagnosis(graded):
+    for name, number in [(k[1], k[2]) for k in graded if k[0] == "equivalent"]:
+        task = graded["equivalent", name, number]
+        assert task.score == task.max_score, [r.message for r in task.checks() if not r.passed]
+        assert not diagnoses(task)
+
+
+def test_every_stored_mistake_gets_its_own_hint(graded):
+    for key in [k for k in graded if k[0] == "stored"]:
+        task = graded[key]
+        hint = mistakes.read_hints(task.exercise).get(key[2])
+        assert hint, f"{key}: no stored values (equivalent to the solution?)"
+        assert task.score < task.max_score
+        assert diagnosis.sentence(hint) in diagnoses(task), (key, diagnoses(task))
+
+
+# -- the shape analysis alone, on made-up values --------------------------------------------
+def probe_rows(n: int = 200, seed: int = 3) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return np.stack(
+        [rng.uniform(0, hi, n) for hi in (80, 360, 80, 360)],
+        axis=1,
+    )
+
+
+@pytest.mark.parametrize(
+    "factor,words",
+    [
+        (np.pi, "π times too large"),
+        (1 / np.pi, "π times too small"),
+        (4.0, "4 times too large"),
+        (0.5, "2 times too small"),
+        (1.37, "1.37 times too large"),
+    ],
+)
+def test_constant_ratio_is_named(factor, words):
+    check = Check("probe.x", "probe", 1.0)
+    angles = probe_rows()
+    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3))
+    assert words in diagnosis.shape(check, angles, expected, expected * factor)
+
+
+def test_cosine_factor_grazing_and_channel_are_named():
+    check = Check("probe.x", "probe", 1.0)
+    angles = probe_rows()
+    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3))
+    cos_i = np.cos(np.radians(angles[:, 0]))[:, None]
+    assert "cos θi" in diagnosis.shape(check, angles, expected, expected * cos_i)
+    assert "√(cos θi cos θo)" in diagnosis.shape(
+        check,
+        angles,
+        expected,
+        expected * np.sqrt(cos_i * np.cos(np.radians(angles[:, 2]))[:, None]),
+    )
+    grazing = expected.copy()
+    grazing[np.maximum(angles[:, 0], angles[:, 2]) > 70] *= 1.5
+    assert "near grazing" in diagnosis.shape(check, angles, expected, grazing)
+    red = expected.copy()
+    red[:50, 0] *= 0.5
+    assert "red channel" in diagnosis.shape(check, angles, expected, red)
+    grey = np.repeat(expected[:, :1], 3, axis=1)
+    assert "grey" in diagnosis.shape(check, angles, expected, grey)
+    assert diagnosis.shape(check, angles, expected, expected * (1 + 1e-5)) == ""
+
+
+def test_cook_torrance_sphere_fails_for_the_classic_mistakes(graded):
+    """09's sphere check alone catches F(N·L), the missing denominator and the missing G."""
+    for label in ("F(N.L)", "no denominator", "no G"):
+        task = graded["corpus", "09_cook_torrance", label]
+        sphere = task.results["sphere.default"]
+        assert not sphere.passed and sphere.diagnosis, (label, sphere.message)
