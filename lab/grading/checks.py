@@ -330,7 +330,7 @@ class Grader:
     def __init__(self) -> None:
         self._renderer: Renderer | None = None
         self._solutions: dict[Path, Model] = {}
-        self._explainer = None
+        self.explainer = None  # lab.grading.explain.Explainer, set by the runner
 
     @property
     def renderer(self) -> Renderer:
@@ -419,13 +419,12 @@ class Grader:
         return result
 
     def diagnose(self, exercise, check, model, expected, raw, live: bool) -> str:
-        """The likely mistake (lab.grading.explain); a diagnosis never breaks grading."""
-        from lab.grading.explain import Explainer
-
-        if self._explainer is None:
-            self._explainer = Explainer(self)
+        """The likely mistake, from the explainer the runner plugs in (lab.grading.explain);
+        a diagnosis never breaks grading."""
+        if self.explainer is None:
+            return ""
         try:
-            return self._explainer.explain(exercise, check, model, expected, raw, live)
+            return self.explainer.explain(exercise, check, model, expected, raw, live)
         except Exception:  # noqa: BLE001 - no hint is better than no grade
             return ""
 

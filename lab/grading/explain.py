@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lab.constants import LUMA
 from lab.glsl import ShaderCompileError
 from lab.grading import diagnosis, mistakes
 from lab.grading.checks import (
@@ -182,7 +183,7 @@ class Explainer:
         text = text or self._swaps(check, model, angles, expected)
         if not text and check.kind == "polar":
             theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
-            lum = np.array([0.2126, 0.7152, 0.0722])
+            lum = np.array(LUMA)
             text = diagnosis.lobe(
                 check, theta, expected @ lum, np.nan_to_num(got) @ lum, check.params
             )

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from lab.grading.checks import CheckResult, Grader
 from lab.grading.exercise import Exercise, load_exercise
+from lab.grading.explain import Explainer
 
 RECYCLE_AFTER = 60  # tasks per worker: drops the programs compiled for old submissions
 MAX_TIMEOUTS = 2  # per task: after this many, the remaining checks are not run
@@ -64,6 +65,7 @@ class Task:
 def _serve(conn: Connection) -> None:
     """Child: grade tasks sent over `conn`, streaming one message per check."""
     grader = Grader()
+    grader.explainer = Explainer(grader)
     while True:
         try:
             job = conn.recv()
