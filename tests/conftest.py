@@ -48,12 +48,44 @@ def renderer(ctx):
     return Renderer(ctx)
 
 
+@pytest.fixture(scope="session")
+def app_renderer(ctx):
+    """The desktop lab's renderer (the core one plus the app's own views)."""
+    from lab.app.renderer import AppRenderer
+
+    return AppRenderer(ctx)
+
+
+@pytest.fixture
+def window(qtbot, app_renderer):
+    """The lab's main window at a laptop size, shown and exposed."""
+    from lab.app.window import MainWindow
+
+    win = MainWindow(app_renderer)
+    qtbot.addWidget(win)
+    win.resize(1280, 800)
+    win.show()
+    qtbot.waitExposed(win)
+    return win
+
+
 @pytest.fixture
 def gl_clean(ctx):
-    """Fail a test that leaves an OpenGL error behind."""
-    assert ctx.error == "GL_NO_ERROR"
-    yield ctx
-    assert ctx.error == "GL_NO_ERROR"
+    """The shared context, for tests that use it directly (every test is checked anyway)."""
+    return ctx
+
+
+@pytest.fixture(autouse=True)
+def no_gl_errors_left_behind():
+    """Fail any test that leaves an OpenGL error in the process's offscreen context."""
+    from lab import gl
+
+    def error() -> str:
+        return gl._offscreen.error if gl._offscreen is not None else "GL_NO_ERROR"
+
+    assert error() == "GL_NO_ERROR", "an OpenGL error was pending before this test"
+    yield
+    assert error() == "GL_NO_ERROR", "this test left an OpenGL error behind"
 
 
 @pytest.fixture(scope="session")

@@ -14,37 +14,14 @@ pytest.importorskip("pytestqt")
 if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
     pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
 
-from lab.app.renderer import AppRenderer  # noqa: E402
+from qtapp import settle  # noqa: E402
+
+from lab import constants  # noqa: E402
 from lab.app.state import shipped_presets  # noqa: E402
 from lab.app.window import MainWindow  # noqa: E402
 from lab.models import MODEL_DIR, load_model  # noqa: E402
 
-LUMA = np.array([0.2126, 0.7152, 0.0722])
-
-
-@pytest.fixture(scope="module")
-def app_renderer(ctx):
-    return AppRenderer(ctx)
-
-
-@pytest.fixture
-def window(qtbot, app_renderer):
-    win = MainWindow(app_renderer)
-    qtbot.addWidget(win)
-    win.resize(1280, 800)
-    win.show()
-    qtbot.waitExposed(win)
-    return win
-
-
-def settle(qtbot, win: MainWindow) -> None:
-    """Wait for the pending frame, then run the refinements too."""
-    qtbot.wait(1)
-    win.request()
-    with qtbot.waitSignal(win.frame_done, timeout=5000):
-        pass
-    win.settle()
-    qtbot.wait(1)
+LUMA = np.array(constants.LUMA)
 
 
 def sphere_image(win: MainWindow, index: int = 0) -> np.ndarray:

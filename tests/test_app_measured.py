@@ -14,8 +14,8 @@ if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
 
 from PyQt6.QtCore import QTimer  # noqa: E402
 from PyQt6.QtWidgets import QApplication  # noqa: E402
+from qtapp import settle  # noqa: E402
 
-from lab.app.renderer import AppRenderer  # noqa: E402
 from lab.app.window import MainWindow  # noqa: E402
 from lab.cli import main  # noqa: E402
 from lab.measured.merl import MerlTable, write_merl  # noqa: E402
@@ -26,11 +26,6 @@ from lab.presets import read_preset  # noqa: E402
 
 GGX = {"kd": (0.2, 0.1, 0.05), "ks": (0.8, 0.8, 0.8), "alpha": 0.25, "f0": (0.5, 0.5, 0.5)}
 DIMS = (45, 45, 90)  # a quarter-size table: quick to make, still a real MERL layout
-
-
-@pytest.fixture(scope="module")
-def app_renderer(ctx):
-    return AppRenderer(ctx)
 
 
 @pytest.fixture(scope="module")
@@ -61,25 +56,6 @@ def fit_preset(table_file, tmp_path_factory):
         == 0
     )
     return outdir / "ggx-ggx-fit.toml"
-
-
-@pytest.fixture
-def window(qtbot, app_renderer):
-    win = MainWindow(app_renderer)
-    qtbot.addWidget(win)
-    win.resize(1280, 800)
-    win.show()
-    qtbot.waitExposed(win)
-    return win
-
-
-def settle(qtbot, win: MainWindow) -> None:
-    qtbot.wait(1)
-    win.request()
-    with qtbot.waitSignal(win.frame_done, timeout=5000):
-        pass
-    win.settle()
-    qtbot.wait(1)
 
 
 def spheres(win: MainWindow) -> dict[str, np.ndarray]:

@@ -36,13 +36,6 @@ vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )
 """
 
 
-@pytest.fixture(scope="module")
-def app_renderer(ctx):
-    from lab.app.renderer import AppRenderer
-
-    return AppRenderer(ctx)
-
-
 def test_parameters_and_shader_section_are_read():
     model = parse_brdf(BLINN, "blinn.brdf")
     n, normalized, tint = model.params.values()

@@ -308,7 +308,8 @@ def test_render_several_lights_and_ambient(tmp_path):
 def test_plot_views_honour_size(tmp_path):
     out = tmp_path / "polar.png"
     assert main(["render", "ggx", "--view", "polar", "--size", "800", "-o", str(out)]) == 0
-    assert Image.open(out).size[0] == 800
+    with Image.open(out) as image:
+        assert image.size[0] == 800
 
 
 def test_eval_measured_table(tmp_path):

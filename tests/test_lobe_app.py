@@ -12,51 +12,13 @@ pytest.importorskip("pytestqt")
 if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
     pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
 
-from PyQt6.QtCore import QPoint, QPointF, Qt, QTimer  # noqa: E402
+from PyQt6.QtCore import QPoint, QPointF, Qt  # noqa: E402
 from PyQt6.QtGui import QWheelEvent  # noqa: E402
 from PyQt6.QtTest import QTest  # noqa: E402
 from PyQt6.QtWidgets import QApplication, QCheckBox  # noqa: E402
+from qtapp import settle  # noqa: E402
 
-from lab.app.renderer import AppRenderer  # noqa: E402
-from lab.app.window import MainWindow  # noqa: E402
 from lab.models import load_model  # noqa: E402
-
-
-@pytest.fixture(scope="module")
-def app_renderer(ctx):
-    return AppRenderer(ctx)
-
-
-def reset_quit() -> None:
-    """Let event loops run again after an earlier test's window quit the application.
-
-    `brdf-lab app` run inside a test (tests/test_app_measured.py) closes its window after
-    exec() returned; Qt then marks the thread as quitting and every later event loop,
-    pytest-qt's waits included, returns at once. A short exec() clears the mark.
-    """
-    app = QApplication.instance()
-    QTimer.singleShot(0, app.quit)
-    app.exec()
-
-
-@pytest.fixture
-def window(qtbot, app_renderer):
-    reset_quit()
-    win = MainWindow(app_renderer)
-    qtbot.addWidget(win)
-    win.resize(1280, 800)
-    win.show()
-    qtbot.waitExposed(win)
-    return win
-
-
-def settle(qtbot, win: MainWindow) -> None:
-    qtbot.wait(1)
-    win.request()
-    with qtbot.waitSignal(win.frame_done, timeout=5000):
-        pass
-    win.settle()
-    qtbot.wait(1)
 
 
 def check_box(widget, text: str) -> QCheckBox:

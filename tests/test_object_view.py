@@ -5,14 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lab.app.renderer import AppRenderer
 from lab.models import load_model
 from lab.render import Light
-
-
-@pytest.fixture(scope="module")
-def app_renderer(ctx):
-    return AppRenderer(ctx)
 
 
 @pytest.mark.parametrize("name", ["lambert", "oren_nayar", "lommel_seeliger", "phong", "ggx"])

@@ -1,0 +1,13 @@
+"""Helpers for tests that drive the desktop lab's window (its fixtures are in conftest.py)."""
+
+from __future__ import annotations
+
+
+def settle(qtbot, win) -> None:
+    """Wait for the pending frame, then run the refinements too."""
+    qtbot.wait(1)
+    win.request()
+    with qtbot.waitSignal(win.frame_done, timeout=5000):
+        pass
+    win.settle()
+    qtbot.wait(1)
