@@ -8,6 +8,7 @@ identify the mistake.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -300,3 +301,36 @@ def test_cook_torrance_sphere_fails_for_the_classic_mistakes(graded):
         task = graded["corpus", "09_cook_torrance", label]
         sphere = task.results["sphere.default"]
         assert not sphere.passed and sphere.diagnosis, (label, sphere.message)
+
+
+# -- the HTML report of three typical mistakes, looked at in Chromium -----------------------
+SHOTS = [
+    ("02_phong", "no 1/pi"),
+    ("05_ward", "axes swapped"),
+    ("09_cook_torrance", "F(N.L)"),
+]
+
+
+def test_report_screenshots_of_three_typical_mistakes(graded, output_dir, tmp_path):
+    from lab.grading.report import html_report
+    from lab.web.browser import chromium
+
+    with chromium() as browser:
+        for name, label in SHOTS:
+            task = graded["corpus", name, label]
+            page_html = html_report([task], f"Grading report: {name}, {label}")
+            hint = next(r.diagnosis for r in task.checks() if r.diagnosis)
+            assert hint in page_html  # the same sentence as the terminal and the JSON
+            assert "too bright" in page_html and "failing pixels" in page_html
+            if any(r.curve for r in task.checks()):
+                assert "rings at" in page_html and "failing directions" in page_html
+            path = tmp_path / f"{name}.html"
+            path.write_text(page_html, encoding="utf-8")
+            stem = "report_" + re.sub(r"\W+", "_", f"{name} {label}").strip("_")
+            for width, height, suffix in ((1024, 768, ""), (390, 844, "_phone")):
+                page = browser.new_page(viewport={"width": width, "height": height})
+                page.goto(path.as_uri())
+                # nothing runs off the side of the page: no clipped plot, no wide text
+                assert page.evaluate("document.documentElement.scrollWidth") <= width
+                page.screenshot(path=output_dir / f"{stem}{suffix}.png", full_page=True)
+                page.close()

@@ -25,6 +25,7 @@ from lab.grading.exercise import (
     read_submission,
     wrapper_origin,
 )
+from lab.grading.visuals import failing_overlay, signed_difference
 from lab.models import Model, ModelError
 from lab.render import Light, Renderer, direction
 
@@ -51,6 +52,7 @@ class CheckResult:
     diagnosis: str = ""  # "Likely: ..." (also the end of the message), or ""
     failing: list[int] = field(default_factory=list)  # polar: indices of failing points
     setting: dict | None = None  # hidden mode: the seed and parameter values used
+    threshold: float = 0.0  # sphere: the per-pixel threshold (1/255) of the difference image
 
     @property
     def passed(self) -> bool:
@@ -262,14 +264,6 @@ def compare_values(
     )
 
 
-def heatmap(diff: np.ndarray, threshold: float) -> np.ndarray:
-    """Largest channel difference: black (0) to yellow (the threshold); red beyond it."""
-    t = np.clip(diff / threshold, 0.0, 1.0)
-    image = np.stack([t, t, 0.3 * t], axis=-1)
-    image[diff > threshold] = (1.0, 0.0, 0.0)
-    return (image * 255 + 0.5).astype(np.uint8)
-
-
 def compare_image(check: Check, reference: np.ndarray, raw: np.ndarray) -> CheckResult:
     """Per-channel threshold after tone mapping, a maximum failing fraction, and mean FLIP."""
     covered = reference[..., 3] > 127
@@ -277,18 +271,23 @@ def compare_image(check: Check, reference: np.ndarray, raw: np.ndarray) -> Check
     student8 = (np.clip(student, 0, 1) * 255 + 0.5).astype(np.uint8)
     bad = bad_values(raw[..., :3]) & covered
     shown = np.where(bad[..., None], np.array([255, 0, 255], np.uint8), student8)
-    diff = np.abs(student - reference[..., :3] / 255.0).max(axis=-1) * 255.0
+    delta = (student - reference[..., :3] / 255.0) * 255.0
+    diff = np.abs(delta).max(axis=-1)
     diff[bad] = 255.0
     diff[~covered] = 0.0
     failing = diff > check.threshold
     fraction = float(failing.sum()) / max(int(covered.sum()), 1)
     flip = mean_flip(reference[..., :3], student8) if failing.any() or diff.max() >= 1.0 else 0.0
+    # the channel that is off the most, with its sign: too bright or too dark
+    pick = np.take_along_axis(delta, np.abs(delta).argmax(axis=-1)[..., None], axis=-1)[..., 0]
+    signed = np.where(bad, 255.0, pick)
     images = {
         "reference": png(reference[..., :3]),
         "student": png(shown),
-        "difference": png(heatmap(diff, check.threshold)),
+        "difference": png(signed_difference(signed, covered, check.threshold)),
+        "failing pixels": png(failing_overlay(reference, failing)),
     }
-    extra = {"images": images, "flip": flip}
+    extra = {"images": images, "flip": flip, "threshold": check.threshold}
     summary = (
         f"{100 * fraction:.2f}% of pixels off by more than {check.threshold:g}/255 "
         f"(allowed {100 * check.max_fraction:.2f}%), mean FLIP {flip:.4f}"
@@ -435,6 +434,9 @@ class Grader:
         if check.kind == "polar":
             angles = polar_angles(check)
             result = compare_values(check, angles, expected, raw, "points of the polar curve")
+            error = np.abs(np.nan_to_num(raw, nan=np.inf) - expected)
+            wrong = bad_values(raw) | (error > check.atol + check.rtol * np.abs(expected)).any(-1)
+            result.failing = np.nonzero(wrong)[0].tolist()
             theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
             result.curve = {
                 "theta_o": theta.tolist(),

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from lab.grading.checks import CheckResult
 from lab.grading.runner import Task
+from lab.grading.visuals import difference_legend, polar_svg
 
 ROW_HEADER = ("theta_i", "phi_i", "theta_o", "phi_o", "expected", "got")
 
@@ -137,65 +138,82 @@ def write_json(data: dict, path: Path) -> None:
 
 # -- HTML -------------------------------------------------------------------------------------
 STYLE = """
-body { font-family: system-ui, sans-serif; margin: 2em; color: #222; max-width: 70em; }
+body { font-family: system-ui, sans-serif; margin: 1.5em; color: #222; max-width: 70em; }
 h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
 .check { margin: 1em 0; padding: 0.5em 1em; border-left: 6px solid #c33; background: #fafafa; }
+.check p, .check pre { overflow-wrap: anywhere; }
 .check.passed { border-color: #3a3; }
 .check.error { border-color: #a3a; }
-.images figure { display: inline-block; margin: 0.3em; text-align: center; font-size: 90%; }
-.images img { width: 192px; height: 192px; image-rendering: pixelated; background: #000; }
+.check p { margin: 0.3em 0; }
+.likely { background: #fff4d6; border: 1px solid #e8c760; padding: 0.3em 0.6em; }
+.setting { color: #555; font-size: 90%; }
+.figures { display: flex; flex-wrap: wrap; gap: 0.8em; align-items: flex-start; margin: 0.5em 0; }
+.figures figure { margin: 0; text-align: center; font-size: 85%; max-width: 100%; }
+.figures img { width: 160px; height: 160px; image-rendering: pixelated; display: block; }
+.figures svg.polar { max-width: 100%; height: auto; display: block; }
+.caption { font-size: 85%; color: #444; max-width: 420px; text-align: left; }
+.legend { width: 200px; max-width: 100%; font-size: 80%; color: #444; text-align: left; }
+.legend .bar { height: 10px; border: 1px solid #bbb; }
+.legend .ticks { display: flex; justify-content: space-between; }
+.scroll { overflow-x: auto; }
 table { border-collapse: collapse; font-family: monospace; font-size: 90%; }
-td, th { border: 1px solid #ccc; padding: 0.15em 0.5em; text-align: right; }
+td, th { border: 1px solid #ccc; padding: 0.15em 0.5em; text-align: right;
+  white-space: nowrap; }
 pre { background: #fee; padding: 0.5em; white-space: pre-wrap; }
 """
 
+CAPTIONS = {
+    "reference": "solution",
+    "student": "yours",
+    "difference": "yours − solution",
+    "failing pixels": "failing pixels (orange)",
+}
 
-def _svg_curve(curve: dict) -> str:
-    """The polar lobe (luminance) of the solution and the submission, as inline SVG."""
-    import math
 
-    size, pad = 320, 10
-    peak = max([*curve["expected"], *curve["got"], 1e-9])
-    paths = []
-    for key, colour in (("expected", "#2a6"), ("got", "#c33")):
-        points_ = []
-        for theta, value in zip(curve["theta_o"], curve[key], strict=True):
-            r = min(max(value, 0.0) / peak, 1.2) * (size / 2 - pad)
-            a = math.radians(theta)
-            points_.append(f"{size / 2 + r * math.sin(a):.1f},{size / 2 - r * math.cos(a):.1f}")
-        paths.append(
-            f'<polyline fill="none" stroke="{colour}" stroke-width="2" '
-            f'points="{" ".join(points_)}"/>'
-        )
+def _setting_text(setting: dict) -> str:
+    """Hidden mode: the seed and the values this check drew."""
+    values = ", ".join(
+        f"{k}={'(' + ', '.join(f'{c:.3g}' for c in v) + ')' if isinstance(v, tuple) else v}"
+        if not isinstance(v, float)
+        else f"{k}={v:.4g}"
+        for k, v in setting.get("params", {}).items()
+    )
     return (
-        f'<svg width="{size}" height="{size // 2 + pad}" viewBox="0 0 {size} {size // 2 + pad}">'
-        f'<line x1="0" y1="{size / 2}" x2="{size}" y2="{size / 2}" stroke="#999"/>'
-        + "".join(paths)
-        + '</svg><div><span style="color:#2a6">solution</span> / '
-        '<span style="color:#c33">yours</span> (luminance of f_r in the plane of incidence, '
-        f"light at {curve['theta_i']:g} deg on the left)</div>"
+        f"hidden mode: seed {setting['seed']}; parameters {values or 'the defaults'}; "
+        f"light at θi = {setting.get('theta_i', 0):.1f}°"
     )
 
 
 def _check_html(result: CheckResult) -> str:
     e = html.escape
+    message = result.message
+    if result.diagnosis and message.endswith(result.diagnosis):
+        message = message[: -len(result.diagnosis)].rstrip(" .") + "."
     parts = [
         f'<div class="check {e(result.status)}"><b>{e(result.name)}</b> '
-        f"{points(result.points)}/{points(result.max_points)} - {e(result.message)}"
+        f"{points(result.points)}/{points(result.max_points)}"
+        f'<p class="message">{e(message)}</p>'
     ]
+    if result.diagnosis:
+        parts.append(f'<p class="likely">{e(result.diagnosis)}</p>')
+    if result.setting:
+        parts.append(f'<p class="setting">{e(_setting_text(result.setting))}</p>')
     if result.errors:
         parts.append("<pre>" + e("\n".join(result.errors)) + "</pre>")
-    if result.images:
-        parts.append('<div class="images">')
-        for label, data in result.images.items():
-            uri = "data:image/png;base64," + base64.b64encode(data).decode()
-            parts.append(
-                f'<figure><img src="{uri}" alt="{e(label)}"><figcaption>{e(label)}'
-                "</figcaption></figure>"
-            )
-        parts.append("</div>")
+    figures = []
+    for label, data in result.images.items():
+        if result.passed and label in ("difference", "failing pixels"):
+            continue
+        uri = "data:image/png;base64," + base64.b64encode(data).decode()
+        legend = difference_legend(result.threshold) if label == "difference" else ""
+        figures.append(
+            f'<figure><img src="{uri}" alt="{e(label)}"><figcaption>'
+            f"{e(CAPTIONS.get(label, label))}</figcaption>{legend}</figure>"
+        )
     if result.curve:
-        parts.append(_svg_curve(result.curve))
+        figures.append(f"<figure>{polar_svg(result.curve, result.failing)}</figure>")
+    if figures:
+        parts.append('<div class="figures">' + "".join(figures) + "</div>")
     if result.rows:
         header = "".join(f"<th>{h}</th>" for h in ROW_HEADER)
         body = "".join(
@@ -204,7 +222,10 @@ def _check_html(result: CheckResult) -> str:
         caption = (
             "the rows nearest the tolerance (all within it)" if result.passed else "the worst rows"
         )
-        parts.append(f"<table><caption>{caption}</caption><tr>{header}</tr>{body}</table>")
+        parts.append(
+            f'<div class="scroll"><table><caption>{caption}</caption><tr>{header}</tr>{body}'
+            "</table></div>"
+        )
     parts.append("</div>")
     return "".join(parts)
 
@@ -223,7 +244,9 @@ def html_report(tasks: list[Task], title: str = "Grading report") -> str:
         )
         body += [_check_html(r) for r in task.checks()]
     return (
-        f'<!DOCTYPE html><html><head><meta charset="utf-8"><title>{e(title)}</title>'
+        f'<!DOCTYPE html><html><head><meta charset="utf-8">'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>{e(title)}</title>"
         f"<style>{STYLE}</style></head><body>{''.join(body)}</body></html>"
     )
 
