@@ -10,8 +10,13 @@ import sys
 import traceback
 from pathlib import Path
 
+from lab import __version__
 from lab.errors import UsageError, check_output, parse_light, parse_pair, parse_rgb
 from lab.models import MODEL_DIR, ModelError
+from lab.resources import ResourceError
+
+# Packages of the whole lab that the lean (grading) install leaves out: lab/requirements-app.txt.
+APP_MODULES = {"PyQt6", "pyqtgraph", "glfw", "matplotlib", "scipy"}
 
 __all__ = ["UsageError", "check_output", "main", "parse_light", "parse_pair", "parse_rgb"]
 
@@ -233,6 +238,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="brdf-lab", description="A teaching lab for BRDFs: one GLSL shader per model."
     )
+    parser.add_argument("--version", action="version", version=f"brdf-lab {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     p = sub.add_parser("models", help="list the models, their parameters and files")
@@ -306,7 +312,7 @@ def main(argv: list[str] | None = None) -> int:
             args = parser.parse_args(["gallery"])
     try:
         return args.func(args)
-    except (UsageError, ModelError, GLUnavailable) as err:
+    except (UsageError, ModelError, GLUnavailable, ResourceError) as err:
         print(f"brdf-lab: error: {err}", file=sys.stderr)
         return 2
     except ShaderCompileError as err:
@@ -318,6 +324,13 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         return 130
     except Exception as err:  # a bug or a broken driver: one line, the trace on request
+        if isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] in APP_MODULES:
+            print(
+                f"brdf-lab: error: '{args.command}' needs {err.name}, which the lean install of "
+                "brdf-lab leaves out: install the whole lab with 'pip install brdf-lab'",
+                file=sys.stderr,
+            )
+            return 2
         if os.environ.get("BRDF_LAB_DEBUG"):
             raise
         where = traceback.extract_tb(err.__traceback__)[-1]

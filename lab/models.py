@@ -10,7 +10,9 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-SHADER_DIR = Path(__file__).resolve().parent.parent / "shaders"
+from lab.resources import data_dir
+
+SHADER_DIR = data_dir("shaders").resolve()
 MODEL_DIR = SHADER_DIR / "brdfs"
 
 PARAM_TYPES = ("float", "color", "bool", "enum")
@@ -316,8 +318,9 @@ def model_names() -> list[str]:
     """Names of the models in the library, sorted."""
     if not MODEL_DIR.is_dir():
         raise ModelError(
-            f"the shader library {MODEL_DIR} is missing: brdf-lab runs from its source tree; "
-            "install it with 'pip install -e .' in a clone"
+            f"the shader library {MODEL_DIR} is missing from this install of brdf-lab: "
+            "reinstall it ('pip install --force-reinstall brdf-lab', or 'pip install -e .' in a "
+            "clone)"
         )
     return sorted(p.stem for p in MODEL_DIR.glob("*.glsl"))
 

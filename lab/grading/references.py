@@ -13,6 +13,7 @@ import numpy as np
 from lab.grading.checks import VALUES_FILE, Grader, expected_value, render
 from lab.grading.exercise import find_exercises
 from lab.grading.explain import make_diagnosis
+from lab.resources import data_dir
 
 
 def make_references(root: str | Path, grader: Grader | None = None) -> list[Path]:
@@ -45,7 +46,7 @@ def make_references(root: str | Path, grader: Grader | None = None) -> list[Path
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    root = Path(argv[0]) if argv else Path(__file__).resolve().parents[2] / "exercises"
+    root = Path(argv[0]) if argv else data_dir("exercises")
     for path in make_references(root):
         print(f"wrote {path}")
     return 0

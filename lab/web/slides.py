@@ -13,9 +13,28 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from lab.resources import data_dir
 from lab.web.site import export, serving
 
-SLIDES_DIR = Path(__file__).resolve().parents[2] / "slides"
+SLIDES_DIR = data_dir("slides")
+
+
+def workdir() -> Path:
+    """Where npm installs and build.mjs runs: slides/ in a clone; for an installed lab
+    (site-packages may be read-only) a copy of the sources in the user's cache."""
+    import os
+
+    from lab import __version__
+
+    if os.access(SLIDES_DIR, os.W_OK) and not (SLIDES_DIR.parent.name == "_data"):
+        return SLIDES_DIR
+    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    work = cache / "brdf-lab" / f"slides-{__version__}"
+    work.mkdir(parents=True, exist_ok=True)
+    for item in SLIDES_DIR.iterdir():
+        if item.is_file():
+            shutil.copy2(item, work / item.name)
+    return work
 
 
 class SlidesError(RuntimeError):
@@ -25,7 +44,7 @@ class SlidesError(RuntimeError):
 def _run(command: list[str], what: str, timeout: float = 300) -> str:
     try:
         result = subprocess.run(
-            command, cwd=SLIDES_DIR, capture_output=True, text=True, timeout=timeout
+            command, cwd=workdir(), capture_output=True, text=True, timeout=timeout
         )
     except FileNotFoundError:
         raise SlidesError(f"{command[0]} is not installed: apt-get install nodejs npm") from None
@@ -40,8 +59,8 @@ def _run(command: list[str], what: str, timeout: float = 300) -> str:
 
 def install() -> None:
     """`npm ci` in slides/ unless node_modules already matches the lockfile."""
-    lock = SLIDES_DIR / "package-lock.json"
-    installed = SLIDES_DIR / "node_modules" / ".package-lock.json"
+    lock = workdir() / "package-lock.json"
+    installed = workdir() / "node_modules" / ".package-lock.json"
     if installed.is_file() and installed.stat().st_mtime >= lock.stat().st_mtime:
         return
     _run(["npm", "ci", "--prefer-offline", "--no-audit", "--no-fund"], "npm ci in slides/")
@@ -62,7 +81,7 @@ def build(outdir: Path, figures: bool = True) -> Path:
 
         lecture_figures(outdir / "figures")
     export(outdir / "lab")  # the live demos' iframes load the web lab from here
-    _run(["node", str(SLIDES_DIR / "build.mjs"), str(outdir.resolve())], "building the deck")
+    _run(["node", str(workdir() / "build.mjs"), str(outdir.resolve())], "building the deck")
     return outdir / "index.html"
 
 

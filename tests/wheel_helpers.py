@@ -1,0 +1,66 @@
+"""Helpers for the tests of the built wheel: build it once, install it into throw-away venvs.
+
+Offline and fast: the wheel is built without build isolation, installed with --no-deps
+--no-index, and the venv sees this environment's third-party packages through a .pth
+file added after the install (so pip never sees, let alone touches, the editable lab).
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import sysconfig
+import zipfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SITE_PACKAGES = Path(sysconfig.get_paths()["purelib"])
+
+
+def build_wheel(dest: Path) -> Path:
+    """`pip wheel` of this checkout into `dest`; returns the .whl."""
+    dest.mkdir(parents=True, exist_ok=True)
+    command = [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation"]
+    subprocess.run(
+        [*command, "-q", "--no-index", str(ROOT), "-w", str(dest)],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+    (wheel,) = dest.glob("brdf_lab-*.whl")
+    return wheel
+
+
+def venv_bin(venv: Path) -> Path:
+    return venv / ("Scripts" if sys.platform == "win32" else "bin")
+
+
+def install_wheel(wheel: Path, venv: Path, borrow_packages: bool = True) -> Path:
+    """A fresh venv with the wheel installed; returns its brdf-lab script.
+
+    `borrow_packages`: afterwards let the venv import this environment's numpy, moderngl,
+    Qt, ... (the lab itself still comes from the wheel: the venv's own site-packages is
+    first on sys.path, and the editable install's hook is a .pth that is not processed).
+    """
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=120)
+    python = venv_bin(venv) / "python"
+    subprocess.run(
+        [str(python), "-m", "pip", "install", "-q", "--no-deps", "--no-index", str(wheel)],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+    if borrow_packages:
+        site = subprocess.run(
+            [str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.strip()
+        (Path(site) / "zz_borrowed_packages.pth").write_text(f"{SITE_PACKAGES}\n")
+    return venv_bin(venv) / "brdf-lab"
+
+
+def wheel_names(wheel: Path) -> set[str]:
+    with zipfile.ZipFile(wheel) as archive:
+        return set(archive.namelist())
