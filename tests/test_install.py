@@ -163,7 +163,7 @@ def test_serve_answers_with_the_page_and_the_installed_shaders(installed):
         shader = urllib.request.urlopen(url + "shaders/brdfs/phong.glsl", timeout=30).read()
     finally:
         server.terminate()
-        server.wait(timeout=30)
+        server.communicate(timeout=30)  # also closes the pipes
     assert "<html" in page.lower()
     assert shader == (ROOT / "shaders" / "brdfs" / "phong.glsl").read_bytes()
 
