@@ -42,3 +42,22 @@ def test_sh_command(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "coefficients" in text and " 81 " in text and out.stat().st_size > 10000
     assert main(["sh", "--orders", "x", "-o", str(out)]) == 2
+
+
+def test_legendre_recurrence_matches_scipy():
+    """The app's own P_l^m (no scipy at start-up) equals scipy's lpmv, phase included."""
+    from scipy.special import lpmv
+
+    from lab.measured.sh import associated_legendre
+
+    x = np.linspace(-1.0, 1.0, 101)
+    table = associated_legendre(16, x)
+    for l in range(17):  # noqa: E741
+        for m in range(l + 1):
+            np.testing.assert_allclose(
+                table[l, m],
+                lpmv(m, l, x),
+                rtol=1e-10,
+                atol=1e-12 * abs(lpmv(m, l, x)).max(),
+                err_msg=f"l={l} m={m}",
+            )

@@ -11,6 +11,7 @@ single refinement step is reported too, since it is what a slider move could wai
 from __future__ import annotations
 
 import os
+import sys
 import time
 
 import numpy as np
@@ -19,7 +20,9 @@ from PyQt6.QtCore import QEvent, QObject
 BENCH_MODELS = ("phong", "cook_torrance", "ward")
 CHANGES = 200
 TARGET_P95_MS = 16.0
-TARGET_LAUNCH_S = 2.0
+TARGET_LAUNCH_S = 0.55  # BRDF Explorer's launch to first frame, measured on this machine
+# Heavy modules the first frame must not wait for: each is imported where it is used.
+HEAVY_MODULES = ("scipy", "matplotlib", "lab.reference", "lab.measured.fit", "lab.grading.checks")
 # Events that mean drawing is still under way: a paint, a pending repaint of a window,
 # a layout to redo or a queued call (QGraphicsScene announces its changes that way).
 BUSY_EVENTS = {
@@ -107,6 +110,7 @@ def run_bench(app, launched: float) -> int:
     wait_frame(app, window, before, watch)
     age = process_age()
     first_frame = age if age is not None else time.perf_counter() - launched
+    heavy = [name for name in HEAVY_MODULES if name in sys.modules]
     window.settle()
     wait_frame(app, window, window.frames - 1, watch)
     state = window.lab.selected
@@ -170,11 +174,14 @@ def run_bench(app, launched: float) -> int:
             f"refinement: {len(refine_steps)} steps, median {median:.1f} ms, slowest "
             f"{slowest:.1f} ms ({name}); they run {REFINE_NOTE}"
         )
-    print(f"launch to first frame: {first_frame:.2f} s")
+    print(
+        f"launch to first frame: {first_frame:.2f} s; heavy modules loaded by then: "
+        + (", ".join(heavy) or "none")
+    )
     worst = max(np.percentile(times, 95) for _, times, _, _, _ in results)
     verdict = "met" if worst <= TARGET_P95_MS and first_frame <= TARGET_LAUNCH_S else "NOT met"
     print(
-        f"targets (p95 <= {TARGET_P95_MS:.0f} ms, launch <= {TARGET_LAUNCH_S:.0f} s): "
+        f"targets (p95 <= {TARGET_P95_MS:.0f} ms, launch <= {TARGET_LAUNCH_S:.2f} s): "
         f"{verdict}; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores"
     )
     window.close()

@@ -14,12 +14,33 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import gammaln, lpmv
 
 
 def coefficient_count(order: int) -> int:
     """Number of real harmonics up to degree `order`."""
     return (order + 1) ** 2
+
+
+def associated_legendre(order: int, x: np.ndarray) -> np.ndarray:
+    """P_l^m(x) for 0 <= m <= l <= order, shape (order + 1, order + 1, n), with the
+    Condon-Shortley phase (as scipy.special.lpmv), by the standard three-term recurrence
+    in l from P_m^m = (-1)^m (2m - 1)!! (1 - x^2)^(m/2) (no scipy: the app starts faster).
+    """
+    x = np.asarray(x, dtype=np.float64)
+    sine = np.sqrt(np.maximum(1.0 - x * x, 0.0))
+    table = np.zeros((order + 1, order + 1, *x.shape))
+    diagonal = np.ones_like(x)
+    for m in range(order + 1):
+        if m:
+            diagonal = -(2 * m - 1) * sine * diagonal
+        table[m, m] = diagonal
+        if m < order:
+            table[m + 1, m] = (2 * m + 1) * x * diagonal
+        for l in range(m + 2, order + 1):  # noqa: E741 (the usual name of the degree)
+            table[l, m] = ((2 * l - 1) * x * table[l - 1, m] - (l + m - 1) * table[l - 2, m]) / (
+                l - m
+            )
+    return table
 
 
 def real_sh(order: int, theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
@@ -28,13 +49,14 @@ def real_sh(order: int, theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
     phi = np.asarray(phi, dtype=np.float64).ravel()
     x = np.cos(theta)
     out = np.empty((len(theta), coefficient_count(order)))
+    legendre = associated_legendre(order, x)
     for l in range(order + 1):  # noqa: E741 (the usual name of the degree)
         for m in range(l + 1):
-            # lpmv includes the Condon-Shortley phase (-1)^m; it cancels in the real basis
+            # P_l^m includes the Condon-Shortley phase (-1)^m; it cancels in the real basis
             # up to a sign per (l, m), which is harmless for projections.
-            ratio = math.exp(gammaln(l - m + 1) - gammaln(l + m + 1))  # (l - m)! / (l + m)!
+            ratio = math.exp(math.lgamma(l - m + 1) - math.lgamma(l + m + 1))  # (l-m)!/(l+m)!
             norm = math.sqrt((2 * l + 1) / (4 * math.pi) * ratio)
-            p = norm * lpmv(m, l, x)
+            p = norm * legendre[l, m]
             if m == 0:
                 out[:, l * l + l] = p
             else:

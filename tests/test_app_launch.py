@@ -1,0 +1,45 @@
+"""The app's first frame does not wait for modules it does not need yet."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from lab.app.bench import HEAVY_MODULES
+
+# A real window with three models and every default view; after its first frame the
+# script prints the heavy modules that were imported on the way.
+SCRIPT = """
+import sys
+from PyQt6.QtWidgets import QApplication
+from lab.app.bench import HEAVY_MODULES
+from lab.app.state import load_any
+from lab.app.window import MainWindow
+
+app = QApplication([])
+window = MainWindow()
+for name in ("phong", "cook_torrance", "ward"):
+    window.lab.add(load_any(name))
+window.resize(1280, 800)
+window.show()
+before = window.frames
+window.request()
+while window.frames == before:
+    app.processEvents()
+print(",".join(m for m in HEAVY_MODULES if m in sys.modules) or "none")
+"""
+
+
+@pytest.mark.skipif(not os.environ.get("DISPLAY"), reason="needs a display (xvfb-run)")
+def test_first_frame_imports_no_heavy_module():
+    run = subprocess.run(
+        [sys.executable, "-c", SCRIPT], capture_output=True, text=True, timeout=120
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip().splitlines()[-1] == "none", (
+        f"loaded before the first frame: {run.stdout.strip()} (of {HEAVY_MODULES}); "
+        "import them where they are used"
+    )
