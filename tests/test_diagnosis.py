@@ -153,6 +153,10 @@ CORPUS = [
     ),
     ("09_cook_torrance", "4 N.L N.V", [("PI * NoL * NoV", "4.0 * NoL * NoV")], "4·N·L·N·V"),
     ("09_cook_torrance", "no 1/pi", [("kd * INV_PI", "kd")], "1/π"),
+    # not in any mistake list: only the shape of the error can tell
+    ("02_phong", "exponent doubled", [("pow(RoV, ke)", "pow(RoV, 2.0 * ke)")], "exponent of about"),
+    ("03_blinn_phong", "pi on ks", [("ks * pow(NoH, ke)", "PI * ks * pow(NoH, ke)")], "π times"),
+    ("05_ward", "extra N.V", [("ks * spec", "ks * spec * NoV")], "cos θo"),
 ]
 
 # Rewrites that are correct: they must pass and get no diagnosis at all.
@@ -334,3 +338,67 @@ def test_report_screenshots_of_three_typical_mistakes(graded, output_dir, tmp_pa
                 assert page.evaluate("document.documentElement.scrollWidth") <= width
                 page.screenshot(path=output_dir / f"{stem}{suffix}.png", full_page=True)
                 page.close()
+
+
+# -- the same sentence everywhere, hidden mode, and messages that do not mislead ------------
+def test_same_sentence_in_terminal_gradescope_and_classroom(graded):
+    import io
+
+    from rich.console import Console
+
+    from lab.grading import report
+
+    task = graded["corpus", "02_phong", "no 1/pi"]
+    hint = task.results["probe.sharp"].diagnosis
+    assert hint.startswith("Likely: ") and "1/π" in hint
+    buffer = io.StringIO()
+    report.terminal([task], Console(file=buffer, width=400, highlight=False, soft_wrap=True))
+    assert hint in buffer.getvalue()
+    outputs = [t["output"] for t in report.gradescope([task], 1.0)["tests"]]
+    messages = [t["message"] for t in report.classroom([task])["tests"]]
+    assert any(hint in o for o in outputs) and any(hint in m for m in messages)
+    assert hint in report.html_report([task])
+
+
+def test_hidden_mode_renders_the_mistakes_live(graded, tmp_path):
+    exercise = EXERCISES["09_cook_torrance"]
+    path = write(tmp_path, "09_cook_torrance", "hidden", [("fresnel_F(VoH)", "fresnel_F(NoL)")])
+    task = Task(exercise, path, seed=11)
+    with Pool(1, timeout=20.0) as pool:
+        pool.run([task])
+    failed = [r for r in task.checks() if not r.passed]
+    assert failed and all(r.setting and r.setting["seed"] == 11 for r in task.checks())
+    assert any("V·H" in r.diagnosis for r in failed), [r.message for r in failed]
+
+
+def grade_text(tmp_path: Path, name: str, text: str) -> Task:
+    exercise = EXERCISES[name]
+    path = tmp_path / exercise.student_file
+    path.write_bytes(text.encode("utf-8"))
+    task = Task(exercise, path)
+    with Pool(1, timeout=20.0) as pool:
+        pool.run([task])
+    return task
+
+
+def test_bom_helper_names_and_header_edits(tmp_path):
+    exercise = EXERCISES["02_phong"]
+    solution = exercise.solution.read_text(encoding="utf-8")
+    assert grade_text(tmp_path, "02_phong", "\ufeff" + solution).passed  # a byte-order mark
+    helper = "vec3 from_angles(float t, float p) { return vec3(t, p, 0.0); }\nvec3 BRDF("
+    task = grade_text(tmp_path, "02_phong", solution.replace("vec3 BRDF(", helper, 1))
+    assert task.passed, [r.message for r in task.checks()]  # no clash with the harness
+    line = "// @param ke float 1 1000 50 log"
+    assert line in solution
+    task = grade_text(tmp_path, "02_phong", solution.replace(line, "// @param ke color 1 1 1"))
+    message = task.checks()[0].message
+    assert "you changed the type of ke from float to color" in message, message
+    assert "phong.glsl:7:" in message
+    default = solution.replace("// @param ke float 1 1000 50", "// @param ke float 1 1000 9")
+    assert grade_text(tmp_path, "02_phong", default).passed  # the stub's defaults count
+
+
+def test_loop_note_only_when_nothing_explains_the_values(graded):
+    for label in ("pi m^2 cos^4", "cos^2", "degrees"):  # 06 has the Gaussian's loop
+        for result in graded["corpus", "06_microfacet_distributions", label].checks():
+            assert "loop" not in result.message, result.message

@@ -54,8 +54,68 @@ def make_class(folder: Path, students: int, seed: int = 1) -> dict[str, int]:
     return counts
 
 
+def _wrongs(text: str) -> list[str]:
+    """The solution with each of the WRONG edits (and two more) that applies to its code."""
+    found = []
+    for old, new in [*WRONG, ("4.0", "2.0"), ("2.0", "1.0")]:
+        at = text.rfind(old)  # the code, not the header's formula
+        if at >= 0:
+            found.append(text[:at] + new + text[at + len(old) :])
+    return found
+
+
+def _best(grader, exercise, path: Path, seed: int | None, repeat: int) -> tuple[float, list]:
+    """Seconds to grade, the best of a few (other processes share the CPUs), and results."""
+    list(grader.run(exercise, path, seed))  # compiles, loads, caches
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        results = list(grader.run(exercise, path, seed))
+        times.append(time.perf_counter() - start)
+    return min(times), results
+
+
+def diagnosis_cost(repeat: int = 5) -> list[tuple]:
+    """Per exercise: seconds to grade a wrong file without and with the diagnosis (warm, as
+    in a worker that has graded before) and with it in hidden mode (mistakes rendered live)."""
+    from lab.grading.checks import Grader
+    from lab.grading.explain import Explainer
+
+    plain = Grader()
+    diagnosing = Grader()
+    diagnosing.explainer = Explainer(diagnosing)
+    figures = []
+    folder = Path(tempfile.mkdtemp(prefix="brdf-diagnosis-bench-"))
+    try:
+        for exercise in find_exercises(ROOT / "exercises"):
+            path = folder / exercise.name / exercise.student_file
+            path.parent.mkdir(parents=True)
+            for text in _wrongs(exercise.solution.read_text(encoding="utf-8")):
+                path.write_text(text, encoding="utf-8")
+                if not all(r.passed for r in plain.run(exercise, path)):
+                    break
+            else:
+                continue
+
+            plain_s, _ = _best(plain, exercise, path, None, repeat)
+            diagnosed_s, results = _best(diagnosing, exercise, path, None, repeat)
+            hidden_s, _ = _best(diagnosing, exercise, path, 7, repeat)
+            failed = [r for r in results if not r.passed]
+            said = sum(1 for r in failed if r.diagnosis)
+            figures.append((exercise.name, plain_s, diagnosed_s, hidden_s, len(failed), said))
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    return figures
+
+
 def run(submissions: int = 100, workers: int = 2, repeat: int = 5) -> None:
     """Print the figures the issue asks for."""
+    for name, plain, diagnosed, hidden, failed, said in diagnosis_cost():
+        print(
+            f"wrong {name:28s} {plain:5.3f} s, diagnosed {diagnosed:5.3f} s "
+            f"(+{diagnosed - plain:.3f} s, {said} of {failed} failed checks named), "
+            f"hidden mode {hidden:5.3f} s"
+        )
     lambert = ROOT / "exercises" / "01_lambert"
     solution = ROOT / "solutions" / "01_lambert" / "lambert.glsl"
     bare = _seconds([sys.executable, "-c", BARE], repeat)

@@ -233,7 +233,9 @@ def compare_values(
     bad = bad_values(got)
     error = np.abs(np.nan_to_num(got, nan=np.inf) - expected)
     wrong = bad | (error > check.atol + check.rtol * np.abs(expected)).any(axis=-1)
-    order = np.argsort(-np.where(bad, np.inf, (error / (check.atol + np.abs(expected))).max(-1)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        relative = (error / (check.atol + np.abs(expected))).max(-1)
+    order = np.argsort(-np.where(bad, np.inf, relative))
     rows = [
         (*(round(float(a), 1) for a in angles[i]), fmt_rgb(expected[i]), fmt_rgb(got[i]))
         for i in order[:6]
@@ -423,7 +425,8 @@ class Grader:
         if self.explainer is None:
             return ""
         try:
-            return self.explainer.explain(exercise, check, model, expected, raw, live)
+            with np.errstate(all="ignore"):  # broken values (inf, NaN) are evidence here
+                return self.explainer.explain(exercise, check, model, expected, raw, live)
         except Exception:  # noqa: BLE001 - no hint is better than no grade
             return ""
 

@@ -31,7 +31,11 @@ GRAZING = 65.0  # degrees: beyond this a direction counts as near grazing
 def within(check: Check, got: np.ndarray, want: np.ndarray, slack: float = 2.0) -> np.ndarray:
     """Rows where `got` is within (a little more than) the check's tolerance of `want`."""
     tol = slack * (check.atol + check.rtol * np.abs(want))
-    return (np.abs(np.nan_to_num(got, nan=1e30) - want) <= tol).all(axis=-1)
+    with np.errstate(invalid="ignore"):
+        close = np.abs(got - want) <= tol
+    # the same infinity, or NaN where the other has NaN, agrees too (a variant that breaks)
+    close |= (got == want) | (np.isnan(got) & np.isnan(want))
+    return close.all(axis=-1)
 
 
 def same(check: Check, got: np.ndarray, want: np.ndarray) -> bool:

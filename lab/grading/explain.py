@@ -182,11 +182,7 @@ class Explainer:
         text = text or diagnosis.shape(check, angles, expected, got)
         text = text or self._swaps(check, model, angles, expected)
         if not text and check.kind == "polar":
-            theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
-            lum = np.array(LUMA)
-            text = diagnosis.lobe(
-                check, theta, expected @ lum, np.nan_to_num(got) @ lum, check.params
-            )
+            text = _lobe(check, angles, expected, got)
         return diagnosis.sentence(text)
 
     def _terms(
@@ -212,6 +208,8 @@ class Explainer:
             else:
                 wrong.append(name)
                 detail = detail or diagnosis.shape(term_check, angles, want, mine)
+                if not detail and check.kind == "polar":
+                    detail = _lobe(term_check, angles, want, mine)
         if not wrong or not right:
             return ""
         return diagnosis.terms_sentence(wrong, right, detail if len(wrong) == 1 else "")
@@ -234,6 +232,13 @@ class Explainer:
         if diagnosis.same(check, axes, expected) and not diagnosis.same(check, axes, got):
             return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y"
         return ""
+
+
+def _lobe(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray) -> str:
+    """The polar curve's peak and width (luminance), against the solution's."""
+    theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
+    lum = np.array(LUMA)
+    return diagnosis.lobe(check, theta, expected @ lum, np.nan_to_num(got) @ lum, check.params)
 
 
 def _tonemapped(raw: np.ndarray) -> np.ndarray:
