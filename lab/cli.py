@@ -10,7 +10,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from lab import __version__
+from lab import __version__, views
 from lab.errors import UsageError, check_output, parse_light, parse_pair, parse_rgb
 from lab.models import MODEL_DIR, ModelError
 from lab.resources import ResourceError
@@ -22,7 +22,6 @@ __all__ = ["UsageError", "check_output", "main", "parse_light", "parse_pair", "p
 
 # Feature packages add their own sub-commands through a `register(subparsers)` function.
 FEATURE_CLIS = ["lab.app.cli", "lab.grading.cli", "lab.web.cli", "lab.measured.cli"]
-VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
 MAX_SIZE = 4096  # pixels per side: a 4096² float image is 256 MiB already
 
 
@@ -102,7 +101,6 @@ def cmd_models(args) -> int:
 
 
 def cmd_render(args) -> int:
-    from lab import plots
     from lab.constants import MAX_LIGHTS
     from lab.render import Renderer
 
@@ -114,19 +112,11 @@ def cmd_render(args) -> int:
     if not 8 <= args.size <= MAX_SIZE:
         raise UsageError(f"--size {args.size} is outside 8..{MAX_SIZE} pixels")
     out = check_output(args.output, ".png")
-    plots.save_render(
-        Renderer(),
-        args.view,
-        model,
-        values,
-        lights[0].theta,
-        lights[0].phi,
-        out,
-        args.size,
-        args.exposure,
-        lights=lights,
-        ambient=ambient,
+    job = views.PlotJob(
+        Renderer(), model, values, lights[0].theta, lights[0].phi, out, args.size, args.exposure
     )
+    job.lights, job.ambient = lights, ambient
+    views.view(args.view).plot(job)
     print(f"wrote {out}")
     return 0
 
@@ -260,7 +250,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="R,G,B",
         help="ambient light L_a (sphere view; the Phong illumination model reflects ka L_a)",
     )
-    p.add_argument("--view", choices=VIEWS, default="sphere")
+    p.add_argument("--view", choices=views.plot_views(), default="sphere")
     p.add_argument(
         "--size",
         type=int,

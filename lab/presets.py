@@ -8,7 +8,7 @@ ships its lecture demonstrations as presets in lab/app/presets/. Layout::
     notes = "what to try"                # shown in the status bar
     views = ["sphere", "polar"]          # the views to show (others are hidden)
 
-    [settings]                           # any of SETTINGS below; the rest keep defaults
+    [settings]                           # light and view settings (lab/views); others: defaults
     theta_i = 30.0
 
     [[model]]                            # one table per model, in list order
@@ -29,6 +29,7 @@ import os
 import sys
 from pathlib import Path
 
+from lab import views
 from lab.models import Model, ModelError, Value
 from lab.sources import MEASURED, open_model
 
@@ -39,28 +40,6 @@ else:  # pragma: no cover
 
 PRESET_DIR = Path(__file__).parent / "app" / "presets"
 MODEL_FILES = (".glsl", ".brdf")
-
-# Light and view settings a preset may hold, with their defaults (and so their types).
-SETTINGS: dict[str, Value] = {
-    "theta_i": 30.0,
-    "phi_i": 0.0,
-    "exposure": 0.0,
-    "gamma": 2.2,
-    "multiply_cos": True,
-    "polar_log": False,
-    "polar_cos": False,
-    "phi_d": 90.0,
-    "shape": 0,
-    "mode": 1,
-    "lights": 3,
-    "ambient": 0.03,
-    "yaw": 0.6,
-    "pitch": 0.5,
-    "lobe_yaw": -0.6,
-    "lobe_pitch": 0.35,
-    "lobe_zoom": 1.0,
-    "sh_order": 8,
-}
 
 
 def load_any(path_or_name: str | Path) -> Model:
@@ -168,12 +147,14 @@ def entry_model(
 def check_settings(settings: object, where: str) -> dict[str, Value]:
     if not isinstance(settings, dict):
         raise ModelError("'settings' must be a [settings] table", where)
-    unknown = [k for k in settings if k not in SETTINGS]
+    known = views.all_settings()
+    unknown = [k for k in settings if k not in known]
     if unknown:
         raise ModelError(
-            f"unknown setting(s) {', '.join(unknown)}; known: {', '.join(SETTINGS)}", where
+            f"unknown setting(s) {', '.join(unknown)}; known: {', '.join(known)}", where
         )
-    return dict(settings)
+    # Wrong types are errors naming the setting; numbers outside a range are clamped.
+    return {name: known[name].check(name, value, where) for name, value in settings.items()}
 
 
 # -- TOML files -----------------------------------------------------------------------------
@@ -235,10 +216,18 @@ def read_preset(path: str | Path) -> dict:
     except UnicodeDecodeError:
         raise ModelError("not a text file: a preset is TOML", path) from None
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         line = getattr(err, "lineno", None)
         raise ModelError(f"not valid TOML ({str(err).split(' (at')[0]})", path, line) from None
+    shown = data.get("views", [])
+    known = [v.name for v in views.all_views()]
+    if not isinstance(shown, list) or not all(isinstance(name, str) for name in shown):
+        raise ModelError(f"'views' must be a list of view names: {', '.join(known)}", path)
+    unknown = [name for name in shown if name not in known]
+    if unknown:
+        raise ModelError(f"unknown view(s) {', '.join(unknown)}; known: {', '.join(known)}", path)
+    return data
 
 
 def shipped_presets() -> list[Path]:

@@ -29,6 +29,7 @@ LAYERS = {  # module -> layer; a feature package's modules default to the top la
     "lab.measured.merl": 1,
     "lab.measured.model": 1,
     "lab.render": 2,
+    "lab.views": 2,
     "lab.plots": 2,
     "lab.presets": 2,
     "lab.figures": 2,
@@ -68,6 +69,8 @@ def import_graph() -> dict[str, set[str]]:
 def layer(module: str) -> int:
     if module in LAYERS:
         return LAYERS[module]
+    if module.startswith("lab.views."):
+        return LAYERS["lab.views"]  # a view's module: what it computes and plots
     if module.count(".") >= 2 or module == "lab.__main__":
         return TOP  # a module of a feature package (lab.app.window, lab.grading.cli, ...)
     raise AssertionError(

@@ -10,10 +10,11 @@ from lab import glsl
 from lab.constants import MAX_LIGHTS
 from lab.models import Model
 from lab.render import Light, Renderer, direction
+from lab.views.object import MODES, SHAPES
+
+__all__ = ["MODES", "SHAPES", "AppRenderer"]
 
 UNIFORM_LINE = re.compile(r"^uniform (float|vec3) ([A-Za-z_]\w*);$")
-SHAPES = ("torus", "sphere", "rounded box", "bumpy sphere")
-MODES = ("geometry only", "single BRDF", "diffuse texture only", "textures drive the BRDF")
 
 
 def spatially_varying(source: glsl.Source, model: Model) -> None:

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from PyQt6.QtCore import QObject, pyqtSignal
 
-from lab import presets
+from lab import presets, views
 from lab.models import Model, ModelError, Value
 from lab.presets import (  # noqa: F401 (the app's modules import these from here)
     PRESET_DIR,
@@ -108,19 +108,18 @@ class Settings(QObject):
 
     changed = pyqtSignal(str)
 
-    DEFAULTS: dict[str, Value] = presets.SETTINGS
-
     def __init__(self):
         super().__init__()
-        self.values: dict[str, Value] = dict(self.DEFAULTS)
+        # The light's and every registered view's settings (lab/views), at their defaults.
+        self.values: dict[str, Value] = views.defaults()
 
     def __getitem__(self, name: str) -> Value:
         return self.values[name]
 
     def set(self, name: str, value: Value) -> None:
-        if name not in self.DEFAULTS:
+        if name not in self.values:
             raise KeyError(name)
-        kind = type(self.DEFAULTS[name])
+        kind = type(self.values[name])
         value = kind(value)
         if isinstance(value, float) and not math.isfinite(value):
             return
@@ -231,7 +230,7 @@ class LabState(QObject):
         self.clear()
         # A preset names only some settings; the rest go back to their defaults so nothing
         # leaks from the previous preset.
-        for name, value in {**presets.SETTINGS, **settings}.items():
+        for name, value in {**views.defaults(), **settings}.items():
             self.settings.set(name, value)
         for model, values, from_file, entry in loaded:
             state = self.add(

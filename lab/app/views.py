@@ -306,8 +306,8 @@ class SphereView(View):
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
         s = lab.settings
-        self.tools.addWidget(SettingSlider(s, "exposure", "exposure", -8.0, 8.0, 0.1), 2)
-        self.tools.addWidget(SettingSlider(s, "gamma", "gamma", 1.0, 3.0, 0.1), 1)
+        self.tools.addWidget(SettingSlider.of(s, "exposure"), 2)
+        self.tools.addWidget(SettingSlider.of(s, "gamma"), 1)
         self.tools.addWidget(SettingCheck(s, "multiply_cos", "× N·L"))
         self.canvas = ImageRow(self.drag_light)
         self.layout_.addWidget(self.canvas, 1)
@@ -811,7 +811,7 @@ class SliceView(View):
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
         s = lab.settings
-        phi_d = SettingSlider(s, "phi_d", "φd", 0.0, 180.0, 1.0)
+        phi_d = SettingSlider.of(s, "phi_d")
         phi_d.setToolTip(
             "the slice's difference azimuth; the images use the spheres' exposure and gamma"
         )
@@ -986,8 +986,8 @@ class ObjectView(View):
             combo.setMinimumContentsLength(6)
             self.tools.addWidget(combo, 1)
         more = QHBoxLayout()  # a second row: the view stays narrow enough to share a row
-        more.addWidget(SettingSlider(s, "lights", "lights", 1, 4, 1), 1)
-        more.addWidget(SettingSlider(s, "ambient", "ambient", 0.0, 0.3, 0.01), 1)
+        more.addWidget(SettingSlider.of(s, "lights"), 1)
+        more.addWidget(SettingSlider.of(s, "ambient"), 1)
         self.layout_.addLayout(more)
         self.canvas = ImageRow(self.drag)
         self.layout_.addWidget(self.canvas, 1)

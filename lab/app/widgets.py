@@ -25,6 +25,7 @@ from PyQt6.QtWidgets import (
     QWidget,
 )
 
+from lab import views
 from lab.app.state import LabState, ModelState, Settings
 from lab.models import ModelError, Param, model_names
 
@@ -449,6 +450,12 @@ class SettingSlider(QWidget):
         self.slider.valueChanged.connect(lambda pos: settings.set(name, low + pos * step))
         settings.changed.connect(self._changed)
         self._changed(name)
+
+    @classmethod
+    def of(cls, settings: Settings, name: str) -> SettingSlider:
+        """The slider for a registered setting, with its label, range and step (lab/views)."""
+        spec = views.all_settings()[name]
+        return cls(settings, name, spec.label or name, spec.minimum, spec.maximum, spec.step)
 
     def _changed(self, name: str) -> None:
         if name != self.name:

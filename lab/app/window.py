@@ -20,10 +20,10 @@ from PyQt6.QtWidgets import (
     QWidget,
 )
 
+from lab import views
 from lab.app.renderer import AppRenderer
-from lab.app.sh_view import SHView
 from lab.app.state import LabState
-from lab.app.views import VIEW_CLASSES, View
+from lab.app.views import View
 from lab.app.widgets import ModelList, ParamPanel, SettingSlider
 from lab.glsl import ShaderCompileError
 from lab.measured.model import measured_model
@@ -33,8 +33,10 @@ from lab.presets import dump_toml, load_any, read_preset, shipped_presets
 REFINE_DELAY_MS = 150
 QWIDGETSIZE_MAX = 16777215  # Qt's "no maximum" for a widget's size
 NOT_YET = "it was not added: it is added when a saved version compiles"
-# The views in the window: the core ones and the spherical-harmonics view (lab.measured).
-ALL_VIEWS = [*VIEW_CLASSES, SHView]
+DOCK_AREAS = {
+    "right": Qt.DockWidgetArea.RightDockWidgetArea,
+    "bottom": Qt.DockWidgetArea.BottomDockWidgetArea,
+}
 
 
 class MainWindow(QMainWindow):
@@ -101,8 +103,8 @@ class MainWindow(QMainWindow):
         self.model_list.open_file.connect(self.ask_open)
         layout.addWidget(self.model_list)
         s = self.lab.settings
-        self.theta_slider = SettingSlider(s, "theta_i", "θi", 0.0, 90.0, 0.5)
-        self.phi_slider = SettingSlider(s, "phi_i", "φi", 0.0, 360.0, 0.5)
+        self.theta_slider = SettingSlider.of(s, "theta_i")
+        self.phi_slider = SettingSlider.of(s, "phi_i")
         layout.addWidget(self.theta_slider)
         layout.addWidget(self.phi_slider)
         self.params = ParamPanel(self.lab)
@@ -127,30 +129,27 @@ class MainWindow(QMainWindow):
         self.error_dock.hide()
 
     def _build_views(self) -> None:
-        areas = {
-            "sphere": Qt.DockWidgetArea.RightDockWidgetArea,
-            "polar": Qt.DockWidgetArea.RightDockWidgetArea,
-            "lobe3d": Qt.DockWidgetArea.RightDockWidgetArea,
-            "slice": Qt.DockWidgetArea.BottomDockWidgetArea,
-            "albedo": Qt.DockWidgetArea.BottomDockWidgetArea,
-            "object": Qt.DockWidgetArea.BottomDockWidgetArea,
-            "sh": Qt.DockWidgetArea.RightDockWidgetArea,
-        }
-        for cls in ALL_VIEWS:
-            view = cls(self.lab, self.renderer)
-            dock = QDockWidget(cls.title, self)
-            dock.setObjectName(cls.name)
+        # Every registered view gets a dock, placed by its spec: rows in its area stack
+        # (the spheres on top), the views of a row sit side by side.
+        rows: dict[tuple[str, int], list[QDockWidget]] = {}
+        for spec in views.all_views():
+            view = spec.widget_class()(self.lab, self.renderer)
+            dock = QDockWidget(spec.title, self)
+            dock.setObjectName(spec.name)
             dock.setWidget(view)
             dock.visibilityChanged.connect(lambda shown: shown and self.request())
-            self.addDockWidget(areas[cls.name], dock)
+            self.addDockWidget(DOCK_AREAS[spec.dock[0]], dock)
             self.views.append(view)
-            self.docks[cls.name] = dock
-        # Spheres on top; polar and 3D lobe beside each other; the rest in a row below.
-        self.splitDockWidget(self.docks["sphere"], self.docks["polar"], Qt.Orientation.Vertical)
-        self.splitDockWidget(self.docks["polar"], self.docks["lobe3d"], Qt.Orientation.Horizontal)
-        self.splitDockWidget(self.docks["lobe3d"], self.docks["sh"], Qt.Orientation.Horizontal)
-        self.splitDockWidget(self.docks["slice"], self.docks["albedo"], Qt.Orientation.Horizontal)
-        self.splitDockWidget(self.docks["albedo"], self.docks["object"], Qt.Orientation.Horizontal)
+            self.docks[spec.name] = dock
+            rows.setdefault(spec.dock, []).append(dock)
+        for area in DOCK_AREAS:
+            above = None
+            for _, row in sorted((key[1], docks) for key, docks in rows.items() if key[0] == area):
+                if above is not None:
+                    self.splitDockWidget(above, row[0], Qt.Orientation.Vertical)
+                for left, right in zip(row, row[1:], strict=False):
+                    self.splitDockWidget(left, right, Qt.Orientation.Horizontal)
+                above = row[0]
 
     def controls_cap(self) -> int:
         """The widest the controls panel may be: a fifth of the screen when presenting."""
@@ -215,12 +214,12 @@ class MainWindow(QMainWindow):
         presets.addSeparator()
         self._action(presets, "Next preset", lambda: self.step_preset(1), "PgDown")
         self._action(presets, "Previous preset", lambda: self.step_preset(-1), "PgUp")
-        views = bar.addMenu("&View")
+        view_menu = bar.addMenu("&View")
         for dock in self.findChildren(QDockWidget):
-            views.addAction(dock.toggleViewAction())
-        views.addSeparator()
+            view_menu.addAction(dock.toggleViewAction())
+        view_menu.addSeparator()
         self._action(
-            views, "Presenter mode (large fonts, full screen)", self.toggle_presenter, "F11"
+            view_menu, "Presenter mode (large fonts, full screen)", self.toggle_presenter, "F11"
         )
 
     def _action(self, menu, text: str, slot, shortcut: str | None = None) -> QAction:
@@ -406,10 +405,10 @@ class MainWindow(QMainWindow):
         path = Path(path).resolve()
         data = read_preset(path)
         self.lab.from_dict(data, base=path.parent, where=str(path))
-        views = data.get("views")
-        if isinstance(views, list):
+        shown = data.get("views")  # names checked by read_preset
+        if shown is not None:
             for name, dock in self.docks.items():
-                dock.setVisible(name in views)
+                dock.setVisible(name in shown)
         for state in self.lab.models:
             if state.from_file:
                 self.watch(str(Path(state.model.path).resolve()))

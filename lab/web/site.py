@@ -11,7 +11,7 @@ import threading
 from collections.abc import Iterator
 from pathlib import Path
 
-from lab import constants
+from lab import constants, views
 from lab.models import SHADER_DIR, model_names
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
@@ -20,7 +20,12 @@ STATIC_DIR = Path(__file__).resolve().parent / "static"
 def manifest() -> dict:
     """What the page loads: the model names and every shader file (paths under shaders/)."""
     files = sorted(p.relative_to(SHADER_DIR).as_posix() for p in SHADER_DIR.rglob("*.glsl"))
-    return {"models": model_names(), "files": files, "constants": constants.as_dict()}
+    return {
+        "models": model_names(),
+        "files": files,
+        "constants": constants.as_dict(),
+        "views": views.manifest(),
+    }
 
 
 def export(outdir: str | Path) -> Path:

@@ -1,0 +1,14 @@
+"""Spherical harmonics of the lobe: projection, reconstruction and error by order."""
+
+from __future__ import annotations
+
+from lab.views import Setting, ViewSpec
+
+VIEW = ViewSpec(
+    name="sh",
+    title="Spherical harmonics",
+    settings={"sh_order": Setting(8, 0, 16, "order")},
+    dock=("right", 1),
+    widget="lab.app.sh_view:SHView",
+    order=40,
+)
