@@ -7,7 +7,6 @@ import json
 import os
 import subprocess
 import sys
-import zipfile
 from pathlib import Path
 
 import pytest
@@ -208,27 +207,6 @@ def test_grade_all_writes_gradebook_and_reports(tmp_path):
     assert "file not found" in (out / "reports" / "cy.html").read_text()
     assert '<img src="data:image/png;base64,' in (out / "reports" / "ada.html").read_text()
     assert json.loads((out / "reports" / "ada.json").read_text())["score"] == 10
-
-
-def test_gradescope_zip_holds_the_scripts_and_the_lab(tmp_path):
-    out = tmp_path / "autograder.zip"
-    done = run_cli("gradescope-zip", "exercises/01_lambert", "exercises/02_phong", "-o", str(out))
-    assert done.returncode == 0, done.stderr
-    with zipfile.ZipFile(out) as archive:
-        names = set(archive.namelist())
-        run = archive.read("run_autograder").decode()
-        mode = archive.getinfo("run_autograder").external_attr >> 16
-    assert {
-        "setup.sh",
-        "run_autograder",
-        "pyproject.toml",
-        "lab/grading/cli.py",
-        "shaders/terms/common.glsl",
-        "exercises/01_lambert/references/values.npz",
-    } <= names
-    assert not any(n.startswith("solutions/") for n in names)
-    assert "exercises/01_lambert exercises/02_phong" in run and "results.json" in run
-    assert mode & 0o111
 
 
 def test_classroom_workflow_template_runs_the_grader_and_reporter():

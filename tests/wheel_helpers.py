@@ -7,11 +7,15 @@ file added after the install (so pip never sees, let alone touches, the editable
 
 from __future__ import annotations
 
+import importlib.metadata
 import subprocess
 import sys
 import sysconfig
 import zipfile
 from pathlib import Path
+
+from packaging.requirements import Requirement
+from packaging.utils import canonicalize_name
 
 ROOT = Path(__file__).resolve().parents[1]
 SITE_PACKAGES = Path(sysconfig.get_paths()["purelib"])
@@ -64,3 +68,46 @@ def install_wheel(wheel: Path, venv: Path, borrow_packages: bool = True) -> Path
 def wheel_names(wheel: Path) -> set[str]:
     with zipfile.ZipFile(wheel) as archive:
         return set(archive.namelist())
+
+
+def _closure(requirements: list[str]) -> dict[str, importlib.metadata.Distribution]:
+    """The installed distributions that `requirements` pull in, transitively."""
+    found: dict[str, importlib.metadata.Distribution] = {}
+    todo = [Requirement(r) for r in requirements]
+    while todo:
+        req = todo.pop()
+        if req.marker and not req.marker.evaluate({"extra": ""}):
+            continue
+        key = canonicalize_name(req.name)
+        if key in found:
+            continue
+        found[key] = dist = importlib.metadata.distribution(req.name)
+        todo += [Requirement(r) for r in dist.requires or []]
+    return found
+
+
+def wheelhouse(requirements_file: Path, dest: Path) -> list[str]:
+    """Wheels re-packed from this environment's installed copies of a requirements file's
+    packages and their dependencies, so pip can install them with --no-index (offline).
+
+    Returns the distribution names. Anything outside the closure (PyQt6, say) is absent,
+    so an install from here fails if the set is not as lean as it claims.
+    """
+    dest.mkdir(parents=True, exist_ok=True)
+    lines = [ln.split("#")[0].strip() for ln in requirements_file.read_text().splitlines()]
+    dists = _closure([ln for ln in lines if ln])
+    for dist in dists.values():
+        info = Path(str(dist._path))  # the .dist-info folder
+        tag = next(
+            ln.split(":", 1)[1].strip()
+            for ln in (info / "WHEEL").read_text().splitlines()
+            if ln.startswith("Tag:")
+        )
+        name = f"{canonicalize_name(dist.metadata['Name']).replace('-', '_')}-{dist.version}"
+        with zipfile.ZipFile(dest / f"{name}-{tag}.whl", "w", zipfile.ZIP_STORED) as whl:
+            for file in dist.files or []:
+                path = Path(file.locate())
+                if file.parts[0] == ".." or "__pycache__" in file.parts or not path.is_file():
+                    continue
+                whl.write(path, file.as_posix())
+    return sorted(dists)

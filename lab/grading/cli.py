@@ -163,7 +163,8 @@ def cmd_gradescope_zip(args) -> int:
 
     exercises = _exercises(args.exercise)
     out = _output(args.output)
-    gradescope_zip(exercises, out, seed=args.seed)
+    wheel = Path(args.wheel) if args.wheel else None
+    gradescope_zip(exercises, out, seed=args.seed, hidden=not args.reference_mode, wheel=wheel)
     print(f"wrote {out}: upload it as the autograder of a Gradescope programming assignment")
     return 0
 
@@ -215,7 +216,17 @@ def register(sub) -> None:
     p = sub.add_parser("gradescope-zip", help="build a Gradescope autograder zip")
     p.add_argument("exercise", nargs="+", metavar="EXERCISE_DIR")
     p.add_argument("-o", "--output", default="autograder.zip")
-    p.add_argument("--seed", type=int, help="grade in hidden mode (bundles the solutions)")
+    p.add_argument(
+        "--seed",
+        type=int,
+        help="one seed for every submission (default: each submission's own, from Gradescope)",
+    )
+    p.add_argument(
+        "--reference-mode",
+        action="store_true",
+        help="grade against the committed references (practice; default: hidden mode)",
+    )
+    p.add_argument("--wheel", metavar="FILE.whl", help="the lab's wheel (default: build it)")
     p.set_defaults(func=cmd_gradescope_zip)
 
     p = sub.add_parser("grade-bench", help="grading latency and grade-all throughput")
