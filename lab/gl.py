@@ -9,6 +9,16 @@ import moderngl
 _offscreen: moderngl.Context | None = None
 
 
+INSTALL_HINTS = {  # what to do without OpenGL 3.3; the README's "macOS and Windows" says more
+    "linux": "On Debian/Ubuntu install Mesa's drivers: apt-get install libegl1 libgl1-mesa-dri",
+    "win32": "Install your graphics card's driver from NVIDIA, AMD or Intel (Windows' basic "
+    "display driver has no OpenGL 3.3); in a VM use Mesa's opengl32.dll next to python.exe, "
+    "or the web lab ('brdf-lab serve')",
+    "darwin": "macOS provides OpenGL 4.1 itself: run from a logged-in desktop session "
+    "(not over plain ssh), or use the web lab ('brdf-lab serve')",
+}
+
+
 class GLUnavailable(RuntimeError):
     """No OpenGL 3.3 context could be made; the message says what to install."""
 
@@ -37,7 +47,7 @@ def get_context(window: bool = False) -> moderngl.Context:
         else:
             raise GLUnavailable(
                 f"cannot create an offscreen OpenGL 3.3 context ({'; '.join(errors)}). "
-                "On Debian/Ubuntu install Mesa's drivers: apt-get install libegl1 libgl1-mesa-dri"
+                + INSTALL_HINTS.get(sys.platform, INSTALL_HINTS["linux"])
             )
     return _offscreen
 

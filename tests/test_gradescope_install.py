@@ -206,3 +206,18 @@ def test_commit_seeds_are_the_short_sha():
     assert seeds.from_commit("00000ff" + "0" * 33) == 255
     with pytest.raises(ValueError, match="not a commit SHA"):
         seeds.from_commit("main")
+
+
+def test_gradescope_zip_command_builds_the_wheel_itself(tmp_path, capsys):
+    from lab.cli import main
+
+    out = tmp_path / "autograder.zip"
+    assert main(["gradescope-zip", str(ROOT / "exercises" / "02_phong"), "-o", str(out)]) == 0
+    with zipfile.ZipFile(out) as archive:
+        names = archive.namelist()
+        run = archive.read("run_autograder").decode()
+    assert any(n.startswith("brdf_lab-") and n.endswith(".whl") for n in names)
+    assert "MODE=hidden" in run and "solutions/02_phong/phong.glsl" in names
+    assert main(["gradescope-zip", str(ROOT / "exercises" / "02_phong"), "-o", str(out),
+                 "--wheel", str(tmp_path / "nothing.whl")]) == 2  # fmt: skip
+    assert "not a brdf_lab-*.whl file" in capsys.readouterr().err
