@@ -131,6 +131,8 @@ def save_view(
         polar_axes(ax, renderer.polar(model, values, theta, phi), model.name)
         style_polar(ax, theta, "f_r (1/sr, luminance)")
     elif view == "lobe3d":
+        from lab.views.lobe3d import save_lobe3d
+
         save_lobe3d(renderer, model, values, theta, phi, out, width=max(size, 320))
         return
     elif view == "slice":
@@ -175,74 +177,4 @@ def save_view(
     fig.tight_layout()
     # The figure is 6 inches wide: this dpi makes it `size` pixels (320 at least, to stay legible).
     fig.savefig(out, dpi=max(size, 320) / fig.get_size_inches()[0])
-    plt.close(fig)
-
-
-LOBE_BACKGROUND = (40, 40, 44)  # the desktop lab's background
-LOBE_COLOR = (0.95, 0.55, 0.2)
-
-
-def save_lobe3d(
-    renderer,
-    model: Model,
-    values,
-    theta: float,
-    phi: float,
-    out: str | Path,
-    width: int = 640,
-    log: bool = False,
-    cos_weighted: bool = False,
-) -> None:
-    """The 3D lobe drawn on the GPU by the model's GLSL (Renderer.lobe_mesh) with a caption
-    and the normal, incident and mirror directions named."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from lab.render import LOBE_MARK_RGB, LobeCamera, direction
-
-    width = int(width)
-    height = int(round(width * 0.75))
-    camera = LobeCamera()
-    background = tuple(c / 255.0 for c in LOBE_BACKGROUND)
-    peak = renderer.lobe_peak(model, values, theta, phi, cos_weighted)
-    image = renderer.lobe_mesh(
-        [(model, values, LOBE_COLOR)],
-        theta,
-        phi,
-        (width, height),
-        camera,
-        cos_weighted=cos_weighted,
-        log=log,
-        peaks=[peak],
-        background=(*background, 1.0),
-        supersample=2,
-    )
-    dpi = 100
-    caption = 36
-    fig = plt.figure(figsize=(width / dpi, (height + caption) / dpi), dpi=dpi)
-    fig.patch.set_facecolor(background)
-    ax = fig.add_axes((0.0, 0.0, 1.0, height / (height + caption)))
-    ax.imshow(np.clip(image[..., :3], 0.0, 1.0), interpolation="none")
-    ax.set_axis_off()
-    ends = [direction(0.0, 0.0), direction(theta, phi), direction(theta, phi + 180.0)]
-    points = camera.project(1.22 * np.array(ends), (width, height))
-    for (x, y), name in zip(points, ("normal", "incident", "mirror"), strict=True):
-        ax.text(x, y, name, color=LOBE_MARK_RGB[name], fontsize=9, ha="center", va="center")
-    quantity = "f_r cos θo" if cos_weighted else "f_r"
-    scale = ", log scale (3 decades)" if log else ""
-    what = f"{model.name}: {quantity} for light from θi = {theta:g}°, φi = {phi:g}°{scale}"
-    if model.delta:
-        what += f"; the spike: reflectance {peak[1]:.3g}"
-    fig.text(
-        0.5,
-        1.0 - 0.5 * caption / (height + caption),
-        what,
-        color="0.85",
-        fontsize=10,
-        ha="center",
-        va="center",
-    )
-    fig.savefig(out, dpi=dpi, facecolor=fig.get_facecolor())
     plt.close(fig)

@@ -38,6 +38,11 @@ def open_model(spec: str | Path, table: str | Path | None = None) -> Model:
     return load_model(spec)
 
 
+def as_model(model: Model | str | Path) -> Model:
+    """`model` itself, or the model a name or file opens."""
+    return model if isinstance(model, Model) else open_model(model)
+
+
 def open_with_settings(spec: str | Path, settings: list[str] | None) -> tuple[Model, dict]:
     """The model `spec` names and its values from `NAME=VALUE` strings (e.g. `--set`)."""
     model = open_model(spec)

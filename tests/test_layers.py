@@ -15,6 +15,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "lab"
 LAYERS = {  # module -> layer; a feature package's modules default to the top layer
     "lab": 0,
     "lab.errors": 0,
+    "lab.geometry": 0,
     "lab.resources": 0,
     "lab.constants": 0,
     "lab.gl": 0,

@@ -72,19 +72,6 @@ class PlotJob:
     ambient: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
-def plot_with_matplotlib(view: str) -> Callable[[PlotJob], None]:
-    """A view's plot drawn by lab.plots (imported, with matplotlib, only when used)."""
-
-    def plot(job: PlotJob) -> None:
-        from lab import plots
-
-        plots.save_view(
-            job.renderer, view, job.model, job.values, job.theta_i, job.phi_i, job.out, job.size
-        )
-
-    return plot
-
-
 @dataclass(frozen=True)
 class ViewSpec:
     """What the lab needs to know of a view."""

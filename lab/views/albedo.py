@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from lab.views import ViewSpec, plot_with_matplotlib
+from lab.views import ViewSpec
+from lab.views._plots import matplotlib_plot
 
 VIEW = ViewSpec(
     name="albedo",
     title="Directional albedo",
     dock=("bottom", 0),
     widget="lab.app.views:AlbedoView",
-    plot=plot_with_matplotlib("albedo"),
+    plot=matplotlib_plot("albedo"),
     order=60,
 )

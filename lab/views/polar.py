@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from lab.views import Setting, ViewSpec, plot_with_matplotlib
+from lab.views import Setting, ViewSpec
+from lab.views._plots import matplotlib_plot
 
 VIEW = ViewSpec(
     name="polar",
@@ -13,6 +14,6 @@ VIEW = ViewSpec(
     },
     dock=("right", 1),
     widget="lab.app.views:PolarView",
-    plot=plot_with_matplotlib("polar"),
+    plot=matplotlib_plot("polar"),
     order=20,
 )

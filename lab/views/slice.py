@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from lab.views import Setting, ViewSpec, plot_with_matplotlib
+from lab.views import Setting, ViewSpec
+from lab.views._plots import matplotlib_plot
 
 VIEW = ViewSpec(
     name="slice",
@@ -10,6 +11,6 @@ VIEW = ViewSpec(
     settings={"phi_d": Setting(90.0, 0.0, 180.0, "φd", 1.0)},
     dock=("bottom", 0),
     widget="lab.app.views:SliceView",
-    plot=plot_with_matplotlib("slice"),
+    plot=matplotlib_plot("slice"),
     order=50,
 )
