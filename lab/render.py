@@ -38,6 +38,7 @@ __all__ = [
     "Polar",
     "Renderer",
     "as_model",
+    "light_uniforms",
     "direction",
     "plane_of_incidence",
 ]
@@ -60,6 +61,18 @@ class Polar:
     values: np.ndarray  # (n, 3)
     theta_i: float
     spike: np.ndarray | None = None  # delta models: reflectance of the spike at theta_o = theta_i
+
+
+def light_uniforms(lights: list[Light]) -> dict[str, list]:
+    """`u_light_dir` and `u_light_rgb` for 1 to MAX_LIGHTS lights, padded with dark ones."""
+    if not 1 <= len(lights) <= MAX_LIGHTS:
+        raise ValueError(f"give 1 to {MAX_LIGHTS} lights, not {len(lights)}")
+    pad = MAX_LIGHTS - len(lights)
+    return {
+        "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
+        + [(0.0, 0.0, 1.0)] * pad,
+        "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
+    }
 
 
 class Renderer(LobeMesh):
@@ -158,14 +171,9 @@ class Renderer(LobeMesh):
         """
         model = as_model(model)
         lights = lights if lights is not None else [Light(*light)]
-        if not 1 <= len(lights) <= MAX_LIGHTS:
-            raise ValueError(f"give 1 to {MAX_LIGHTS} lights")
-        dirs = [tuple(direction(lt.theta, lt.phi)) for lt in lights]
-        pad = MAX_LIGHTS - len(lights)
         uniforms = {
+            **light_uniforms(lights),
             "u_resolution": (float(size), float(size)),
-            "u_light_dir": dirs + [(0.0, 0.0, 1.0)] * pad,
-            "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
             "u_ambient": tuple(ambient),
             "u_multiply_cos": multiply_cos,
         }

@@ -9,7 +9,7 @@ import numpy as np
 from lab import glsl
 from lab.constants import MAX_LIGHTS
 from lab.models import Model
-from lab.render import Light, Renderer, direction
+from lab.render import Light, Renderer, light_uniforms
 from lab.views.object import MODES, SHAPES
 
 __all__ = ["MODES", "SHAPES", "AppRenderer"]
@@ -84,7 +84,6 @@ class AppRenderer(Renderer):
         """The procedural object lit by `lights` (camera space), (size, size, 4) float32."""
         resolved = model.resolve(values)
         lights = lights[:MAX_LIGHTS] or [Light(45.0, 0.0)]
-        pad = MAX_LIGHTS - len(lights)
         uniforms = {
             f"{name}_base": value
             for name, value in glsl.uniform_values(model, resolved).items()
@@ -92,10 +91,8 @@ class AppRenderer(Renderer):
         }
         uniforms.update(
             {
+                **light_uniforms(lights),
                 "u_resolution": (float(size), float(size)),
-                "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
-                + [(0.0, 0.0, 1.0)] * pad,
-                "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
                 "u_ambient": tuple(ambient),
                 "u_shape": int(shape),
                 "u_mode": int(mode),

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lab.constants import LUMA, MAX_LIGHTS
+from lab.constants import LUMA
 from lab.glsl import ShaderCompileError, label_of
 from lab.grading.exercise import (
     Check,
@@ -27,7 +27,7 @@ from lab.grading.exercise import (
 )
 from lab.grading.visuals import failing_overlay, signed_difference
 from lab.models import Model, ModelError
-from lab.render import Light, Renderer, direction
+from lab.render import Light, Renderer, light_uniforms
 
 VALUES_FILE = "values.npz"
 
@@ -174,12 +174,9 @@ def render(renderer: Renderer, model: Model, check: Check) -> np.ndarray:
     if check.kind == "polar":
         return renderer.eval_angles(model, check.params, polar_angles(check))
     lights = check.lights
-    pad = MAX_LIGHTS - len(lights)
     uniforms = {
+        **light_uniforms(lights),
         "u_resolution": (float(check.size), float(check.size)),
-        "u_light_dir": [tuple(direction(lt.theta, lt.phi)) for lt in lights]
-        + [(0.0, 0.0, 1.0)] * pad,
-        "u_light_rgb": [tuple(lt.rgb) for lt in lights] + [(0.0, 0.0, 0.0)] * pad,
         "u_ambient": tuple(check.ambient),
         "u_multiply_cos": True,
     }
