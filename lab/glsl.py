@@ -34,7 +34,27 @@ void main() {
 """
 
 # Directives a model file may not contain: the host writes them.
-FORBIDDEN_DIRECTIVE = re.compile(r"^\s*#\s*(version|extension|include)\b")
+FORBIDDEN_DIRECTIVE = re.compile(r"^\s*#\s*(version|extension|include|line)\b")
+
+# The loop guard: every loop of a model counts its iterations (per shader invocation) and
+# stops past the bound, recording its line in lab_loop_line. Software rasterizers give up
+# silently after 65,535 iterations and a GPU freezes: the guard makes both say so.
+LOOP_LIMIT = 10_000
+LOOP_HEAD = re.compile(r"\b(for|while)\s*\(")
+COMMENTS = re.compile(r"//[^\n]*|/\*.*?(?:\*/|\Z)", re.S)
+LOOP_GUARD = """int lab_loop_line = 0;
+bool lab_loop_step(inout int count, int line) {
+    count += 1;
+    if (count <= LAB_LOOP_LIMIT) return true;
+    if (lab_loop_line == 0) lab_loop_line = line;
+    return false;
+}"""
+FLAG_OUTPUT = """#undef main
+layout(location = 1) out vec4 lab_loop_flag;
+void main() {
+    lab_view_main();
+    lab_loop_flag = vec4(float(lab_loop_line), 0.0, 0.0, 1.0);
+}"""
 
 # Where drivers put the line number in an info log; the first group is the line.
 LOG_LINE_PATTERNS = [
@@ -107,6 +127,60 @@ def check_portable(code: str, label: str) -> None:
             )
 
 
+def _closing(text: str, start: int) -> int | None:
+    """Index of the parenthesis closing the one at `start`, or None."""
+    depth = 0
+    for index in range(start, len(text)):
+        if text[index] == "(":
+            depth += 1
+        elif text[index] == ")":
+            depth -= 1
+            if depth == 0:
+                return index
+    return None
+
+
+def guard_loops(code: str) -> tuple[str, list[int]]:
+    """`code` with each loop's condition preceded by `lab_loop_step(counter, line) && `;
+    also returns the loops' lines. Positions within a line shift, lines never do, so
+    compile errors keep their line numbers. A do-while is guarded at its `while`."""
+    blank = COMMENTS.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), code)
+    inserts: list[tuple[int, str]] = []
+    lines: list[int] = []
+    for match in LOOP_HEAD.finditer(blank):
+        start = match.end() - 1
+        end = _closing(blank, start)
+        if end is None:
+            continue  # the compiler will report the unbalanced parenthesis
+        line = blank.count("\n", 0, match.start()) + 1
+        guard = f"lab_loop_step(lab_loop_{len(lines)}, {line})"
+        if match.group(1) == "for":
+            depth, semis = 0, []
+            for index in range(start + 1, end):
+                depth += {"(": 1, ")": -1}.get(blank[index], 0)
+                if blank[index] == ";" and depth == 0:
+                    semis.append(index)
+            if len(semis) != 2:
+                continue
+            first, second = semis[0] + 1, semis[1]
+        else:
+            first, second = start + 1, end
+        if blank[first:second].strip():
+            inserts += [(first, f"{guard} && ("), (second, ")")]
+        else:
+            inserts.append((first, guard))
+        lines.append(line)
+    for position, text in sorted(inserts, key=lambda item: item[0], reverse=True):
+        code = code[:position] + text + code[position:]
+    return code, lines
+
+
+def loop_guard_prelude(loops: int, limit: int) -> str:
+    """The guard's counters and step function for `loops` loops, bound `limit`."""
+    counters = [f"int lab_loop_{k} = 0;" for k in range(loops)]
+    return "\n".join([f"#define LAB_LOOP_LIMIT {int(limit)}", LOOP_GUARD, *counters])
+
+
 def uniform_declarations(model: Model, enums: dict[str, str] | None = None) -> list[str]:
     """Uniforms for the parameters; enums become constants (one program per choice)."""
     lines = []
@@ -172,7 +246,9 @@ def assemble_fragment(
     source.add("\n".join(uniform_declarations(model, enums)), f"{model_label} (parameters)")
     for include in model.includes:
         _add_include(source, include, seen, model)
-    source.add(model.code, model_label)
+    code, loops = guard_loops(model.code)
+    source.add(loop_guard_prelude(len(loops), model.loop_limit), "<loop guard>")
+    source.add(code, model_label)
     source.add(f"const bool IS_DELTA = {'true' if model.delta else 'false'};", "<host>")
     source.add(f"vec3 AMBIENT_REFLECTANCE() {{ return {model.ambient or 'vec3(1.0)'}; }}", "<host>")
     if not model.delta:
@@ -181,8 +257,21 @@ def assemble_fragment(
             "<host>",
         )
     view_path = VIEW_DIR / f"{view}.glsl"
-    source.add(view_path.read_text(encoding="utf-8"), label_of(view_path))
+    add_view(source, view_path.read_text(encoding="utf-8"), label_of(view_path))
     return source
+
+
+def add_view(source: Source, text: str, label: str) -> None:
+    """Add a view template; a fragment view also writes the loop guard's flag (the loop's
+    line, 0 if none stopped) to a second colour output that the renderer can read back."""
+    output = "out vec4 frag_color;"
+    if output not in text or "void main()" not in text:
+        source.add(text, label)
+        return
+    text = text.replace(output, "layout(location = 0) " + output, 1)
+    source.add("#define main lab_view_main", "<loop guard>")
+    source.add(text, label)
+    source.add(FLAG_OUTPUT, "<loop guard>")
 
 
 def vertex_source(target: str = "330") -> str:

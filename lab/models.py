@@ -148,6 +148,7 @@ class Model:
     delta: bool = False
     ambient: str = ""  # the colour parameter that reflects ambient light (@ambient)
     properties: list[str] = field(default_factory=list)  # @property: what tests hold it to
+    loop_limit: int = 10_000  # iterations a loop may run per invocation (lab.glsl's guard)
 
     def defaults(self) -> dict[str, Value]:
         return {p.name: p.default for p in self.params.values()}

@@ -83,6 +83,7 @@ class Renderer(LobeMesh):
         self._programs: dict[tuple, moderngl.Program] = {}
         self._vaos: dict[int, moderngl.VertexArray] = {}
         self._targets: dict[tuple[int, int], moderngl.Framebuffer] = {}
+        self._last: moderngl.Framebuffer | None = None  # the last full-screen view's target
 
     # -- plumbing -------------------------------------------------------------------------
     def program(
@@ -90,7 +91,14 @@ class Renderer(LobeMesh):
     ) -> moderngl.Program:
         """The compiled program for `model` in `view`; raises ShaderCompileError."""
         enums = enums or {}
-        key = (str(model.path), model.code, view, tuple(sorted(enums.items())), preamble)
+        key = (
+            str(model.path),
+            model.code,
+            view,
+            tuple(sorted(enums.items())),
+            preamble,
+            model.loop_limit,
+        )
         program = self._programs.get(key)
         if program is None:
             vertex, source = self._assemble(model, view, enums, preamble)
@@ -120,9 +128,26 @@ class Renderer(LobeMesh):
         fbo = self._targets.get((width, height))
         if fbo is None:
             texture = self.ctx.texture((width, height), 4, dtype="f4")
-            fbo = self.ctx.framebuffer(color_attachments=[texture])
+            flag = self.ctx.texture((width, height), 1, dtype="f4")  # the loop guard's output
+            fbo = self.ctx.framebuffer(color_attachments=[texture, flag])
             self._targets[(width, height)] = fbo
         return fbo
+
+    def loop_stop(self) -> tuple[int, int, int] | None:
+        """After a full-screen view: (line, x, y) of a loop the guard stopped, else None.
+
+        x, y is the first such pixel in GL order (row 0 at the bottom); the line is the
+        model file's (lab.glsl.guard_loops)."""
+        fbo = self._last
+        if fbo is None:
+            return None
+        width, height = fbo.size
+        data = np.frombuffer(fbo.read(components=1, dtype="f4", attachment=1), np.float32)
+        hits = np.flatnonzero(data > 0.5)
+        if hits.size == 0:
+            return None
+        first = int(hits[0])
+        return int(round(float(data[first]))), first % width, first // width
 
     def _run(
         self, model: Model, view: str, values, size, uniforms: dict, preamble: str = ""
@@ -144,6 +169,7 @@ class Renderer(LobeMesh):
         fbo = self.target(*size)
         fbo.use()  # no clear: the triangle covers every pixel
         self._vaos[id(program)].render(moderngl.TRIANGLES, vertices=3)
+        self._last = fbo
         return fbo
 
     @staticmethod

@@ -53,6 +53,7 @@ class CheckResult:
     failing: list[int] = field(default_factory=list)  # polar: indices of failing points
     setting: dict | None = None  # hidden mode: the seed and parameter values used
     threshold: float = 0.0  # sphere: the per-pixel threshold (1/255) of the difference image
+    loop_line: int = 0  # the student's line of a loop the guard stopped (0: none did)
 
     @property
     def passed(self) -> bool:
@@ -209,6 +210,21 @@ def read_png(path: Path) -> np.ndarray:
         return np.asarray(img.convert("RGBA"))
 
 
+def stopped_where(check: Check, x: int, y: int) -> str:
+    """The directions at the pixel where the loop guard stopped a loop, in words."""
+    if check.kind in ("probe", "polar"):
+        angles = probe_angles(check) if check.kind == "probe" else polar_angles(check)
+        row = angles[min(y * min(len(angles), 1024) + x, len(angles) - 1)]
+        return "(θi, φi, θo, φo) = ({:.1f}°, {:.1f}°, {:.1f}°, {:.1f}°)".format(*row)
+    px, py = ((np.array([x, y]) + 0.5) / check.size) * 2.0 - 1.0
+    normal = np.array([px, py, math.sqrt(max(1.0 - px * px - py * py, 0.0))])
+    light = check.lights[0] if check.lights else Light(45.0)
+    theta_i = math.degrees(math.acos(np.clip(normal @ direction(light.theta, light.phi), -1, 1)))
+    theta_o = math.degrees(math.acos(np.clip(normal[2], -1.0, 1.0)))
+    angles = f"θi = {theta_i:.1f}°, θo = {theta_o:.1f}°"
+    return f"pixel ({x}, {check.size - 1 - y}) of the sphere ({angles})"
+
+
 # -- comparisons ----------------------------------------------------------------------------
 def bad_values(values: np.ndarray) -> np.ndarray:
     """Mask of rows with NaN, Inf or negative output (no comparison may let these pass)."""
@@ -361,11 +377,14 @@ class Grader:
         submission: Path,
         seed: int | None = None,
         skip: frozenset[str] = frozenset(),
+        root: Path | None = None,
     ) -> Iterator[CheckResult]:
-        """Grade every check not in `skip`, yielding each result as soon as it is known."""
+        """Grade every check not in `skip`, yielding each result as soon as it is known.
+
+        `root` is the submission's top folder (no link below it is followed)."""
         todo = [(i, c) for i, c in enumerate(exercise.checks) if c.name not in skip]
         try:
-            code = read_submission(submission)
+            code = read_submission(submission, root)
             model = build_model(exercise, submission, code)
         except SubmissionError as err:
             for _, check in todo:
@@ -406,6 +425,18 @@ class Grader:
             return failed(check, "the shader does not compile: " + errors[0], errors=errors)
         except ModelError as err:
             return failed(check, str(err), status="error")
+        stop = self.renderer.loop_stop()
+        if stop is not None:
+            line, x, y = stop
+            file, line = wrapper_origin(exercise, code, label_of(model.path), line)
+            where = stopped_where(check, x, y)
+            return failed(
+                check,
+                f"{file}:{line}: the loop at line {line} did not end within "
+                f"{model.loop_limit:,} iterations at {where}; check its exit condition "
+                "(on a GPU such a loop freezes the screen)",
+                loop_line=line,
+            )
         result = self.compare(check, expected, raw)
         if not result.passed:
             result.diagnosis = self.diagnose(exercise, check, model, expected, raw, live)

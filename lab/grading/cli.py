@@ -82,13 +82,15 @@ def _grade(args) -> int:
     outputs = {k: _output(getattr(args, k)) for k in ("json", "html", "classroom")}
     tasks = []
     for exercise in exercises:
+        root = None
         if args.submission:
             submission = Path(args.submission)
         elif args.from_dir:
-            submission = locate(Path(args.from_dir), exercise)
+            root = Path(args.from_dir)
+            submission = locate(root, exercise)
         else:
             submission = exercise.stub
-        tasks.append(Task(exercise, submission, args.seed))
+        tasks.append(Task(exercise, submission, args.seed, root=root))
     start = time.monotonic()
     with Pool(1, args.timeout) as pool:
         pool.run(tasks)

@@ -12,7 +12,8 @@ import sys
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from lab.glsl import check_portable, label_of
+from lab.glsl import LOOP_LIMIT, label_of
+from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
 from lab.models import Model, ModelError, Param, load_model, parse_model
 from lab.render import Light
 
@@ -66,6 +67,7 @@ class Exercise:
     functions: list[str]
     wrapper: str | None = None  # library model that calls the student's term functions
     replaces: str | None = None  # the library term file the student's file stands in for
+    loop_limit: int = LOOP_LIMIT  # iterations per loop and invocation before the guard stops it
 
     @property
     def name(self) -> str:
@@ -132,9 +134,12 @@ def load_exercise(folder: str | Path) -> Exercise:
             functions=list(spec.get("functions", [])),
             wrapper=spec.get("wrapper"),
             replaces=spec.get("replaces"),
+            loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
         )
     except (KeyError, TypeError) as err:
         raise ExerciseError(f"{spec_path}: missing or malformed entry {err}") from None
+    if exercise.loop_limit < 1:
+        raise ExerciseError(f"{spec_path}: loop_limit must be a positive number of iterations")
     names = [c.name for c in exercise.checks]
     if len(set(names)) != len(names):
         raise ExerciseError(f"{spec_path}: two checks share a name")
@@ -153,10 +158,19 @@ def find_exercises(root: str | Path) -> list[Exercise]:
 
 
 # -- the student's file --------------------------------------------------------------------
-def read_submission(path: Path) -> str:
-    """The submission's text, or SubmissionError saying what is wrong with the file."""
-    if path.is_symlink():
-        raise SubmissionError(f"{path}: is a symbolic link; submit the file itself")
+def read_submission(path: Path, root: Path | None = None) -> str:
+    """The submission's text, or SubmissionError saying what is wrong with the file.
+
+    `root` is the submission's top folder: no link may lie between it and the file.
+    """
+    link = linked_part(root, path) if root is not None else None
+    if link is None and path.is_symlink():
+        link = path
+    if link is not None:
+        raise SubmissionError(
+            f"{link}: is a symbolic link; links are not followed (they could point at "
+            "the solutions or another student's work): submit the files themselves"
+        )
     if not path.exists():
         raise SubmissionError(f"{path}: file not found; submit it under this name")
     if not path.is_file():
@@ -228,23 +242,27 @@ def build_model(exercise: Exercise, path: Path, code: str) -> Model:
     include of the term file it replaces is dropped.
     """
     label = label_of(path)
+    stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
     try:
-        check_portable(code, label)
-        check_functions(code, exercise.functions, label)
+        check_directives(code, label, stub.includes)
+        compiled = preprocess(code, label)  # what the compiler sees: no #if 0, no macros
+        check_functions(compiled, exercise.functions, label)
         if exercise.wrapper:
             wrapper = load_model(exercise.wrapper)
             return Model(
                 name=wrapper.name,
                 path=path,
-                code=code.rstrip("\n") + "\n" + wrapper.code,
+                code=compiled.rstrip("\n") + "\n" + wrapper.code,
                 title=wrapper.title,
                 includes=[i for i in wrapper.includes if i != exercise.replaces],
                 params=wrapper.params,
+                loop_limit=exercise.loop_limit,
             )
         model = parse_model(code, path)
-    except ModelError as err:
+        model.code = compiled
+        model.loop_limit = exercise.loop_limit
+    except (ModelError, SourceError) as err:
         raise SubmissionError(str(err)) from None
-    stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
     for name, param in stub.params.items():
         mine = model.params.get(name)
         what = header_edit(param, mine)

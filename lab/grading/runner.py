@@ -35,6 +35,7 @@ class Task:
     submission: Path
     seed: int | None = None
     key: str = ""
+    root: Path | None = None  # the submission's top folder: no links below it are followed
     results: dict[str, CheckResult] = field(default_factory=dict)
     timeouts: int = 0
     started: float = 0.0
@@ -73,10 +74,11 @@ def _serve(conn: Connection) -> None:
             return
         if job is None:
             return
-        key, folder, submission, seed, skip = job
+        key, folder, submission, root, seed, skip = job
         try:
             exercise = load_exercise(folder)
-            for result in grader.run(exercise, Path(submission), seed, frozenset(skip)):
+            root = Path(root) if root else None
+            for result in grader.run(exercise, Path(submission), seed, frozenset(skip), root):
                 conn.send(("check", key, result))
             conn.send(("done", key, None))
         except Exception as err:  # the grader must report, never die: say what broke
@@ -109,7 +111,9 @@ class _Worker:
         self.task = task
         self.deadline = time.monotonic() + timeout
         skip = sorted(task.results)
-        self.conn.send((task.key, str(task.exercise.folder), str(task.submission), task.seed, skip))
+        root = str(task.root) if task.root else ""
+        exercise = str(task.exercise.folder)
+        self.conn.send((task.key, exercise, str(task.submission), root, task.seed, skip))
 
     def stop(self, kill: bool = False) -> None:
         if kill:

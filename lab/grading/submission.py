@@ -1,0 +1,158 @@
+"""What a submission is allowed to be: its own files, its own code, read by a real preprocessor.
+
+A student's file may not pull in the lab's code (`@include` beyond the stub's own lines,
+`#include`), may not steer the compiler (`#version`, `#extension`) or the error
+locations (`#line`), and may not reach outside its folder through links. What the file
+defines is decided on the text after glslang's preprocessor has run, so code inside
+`#if 0` or hidden behind macros neither counts nor escapes the loop guard.
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+from lab.constants import glsl_defines
+
+# Directives the host owns; a submission containing one gets a message naming the line.
+FORBIDDEN = {
+    "version": "the lab writes the #version line itself",
+    "extension": "extensions are not available in the lab (the web lab and GPUs differ)",
+    "line": "#line would make errors point at the wrong file and line",
+    "include": "GLSL has no #include; a submission must contain all of its own code",
+}
+COMMENT = re.compile(r"//[^\n]*|/\*.*?(?:\*/|\Z)", re.S)
+DIRECTIVE = re.compile(r"^\s*#\s*([A-Za-z_]\w*)")
+AT_INCLUDE = re.compile(r"@\s*include\b\s*(\S*)")
+
+PREPROCESS_SECONDS = 10.0
+PREPROCESS_MEMORY = 1 << 30  # bytes of address space for glslangValidator
+MAX_EXPANDED = 1 << 20  # characters of preprocessed text: more is a macro bomb
+
+
+class SourceError(ValueError):
+    """A submission's text breaks a rule; `line` is 1-based in the student's file."""
+
+    def __init__(self, message: str, line: int | None = None):
+        self.line = line
+        super().__init__(message)
+
+
+def logical_lines(code: str) -> list[tuple[int, str]]:
+    """(first physical line, text) of each logical line, continuations spliced and comments
+    blanked, in the order the GLSL preprocessor applies them (so `/**/#extension` and
+    `#\\`+newline+`extension` are seen as the directives they are)."""
+    spliced: list[tuple[int, str]] = []
+    buffer, start = "", 0
+    for number, line in enumerate(code.split("\n"), start=1):
+        line = line.removesuffix("\r")
+        if not buffer and not start:
+            start = number
+        if line.endswith("\\"):
+            buffer += line[:-1]
+            continue
+        spliced.append((start, buffer + line))
+        buffer, start = "", 0
+    if start:
+        spliced.append((start, buffer))
+    text = "\n".join(line for _, line in spliced)
+    text = COMMENT.sub(lambda m: "\n" * m.group(0).count("\n") + " ", text)
+    return [(spliced[i][0], line) for i, line in enumerate(text.split("\n"))]
+
+
+def check_directives(code: str, label: str, allowed_includes: list[str]) -> None:
+    """Reject host-owned directives and `@include` lines the stub does not have."""
+    for line, text in logical_lines(code):
+        match = DIRECTIVE.match(text)
+        if match and match.group(1) in FORBIDDEN:
+            name = match.group(1)
+            raise SourceError(f"{label}:{line}: remove the '#{name}' line: {FORBIDDEN[name]}", line)
+    for line, text in enumerate(code.splitlines(), start=1):
+        match = AT_INCLUDE.search(text)
+        if match and match.group(1) not in allowed_includes:
+            allowed = ", ".join(allowed_includes) or "none"
+            raise SourceError(
+                f"{label}:{line}: remove '@include {match.group(1)}': a submission contains "
+                f"its own code; the includes the stub has ({allowed}) are the only ones allowed",
+                line,
+            )
+
+
+def glslang() -> str:
+    """The path of glslangValidator, or SourceError saying how to install it."""
+    path = shutil.which("glslangValidator")
+    if path is None:
+        raise SourceError(
+            "the grader needs glslangValidator to read submissions and it is not installed: "
+            "run 'sudo apt-get install glslang-tools' (Debian/Ubuntu) or 'python3 -m lab' "
+            "as root, then grade again (ask your instructor)"
+        )
+    return path
+
+
+def _limit_memory() -> None:  # runs in the child, before exec
+    import resource
+
+    resource.setrlimit(resource.RLIMIT_AS, (PREPROCESS_MEMORY, PREPROCESS_MEMORY))
+
+
+def preprocess(code: str, label: str) -> str:
+    """The submission after the GLSL preprocessor, line for line (glslang keeps the line
+    structure: directives and comments become blank lines). Raises SourceError."""
+    prelude = "#version 330 core\n" + glsl_defines().rstrip("\n") + "\n"
+    skip = prelude.count("\n")
+    try:
+        result = subprocess.run(
+            [glslang(), "-E", "--stdin", "-S", "frag"],
+            input=(prelude + code).encode("utf-8"),
+            capture_output=True,
+            timeout=PREPROCESS_SECONDS,
+            preexec_fn=_limit_memory,
+        )
+    except subprocess.TimeoutExpired:
+        raise SourceError(
+            f"{label}: the preprocessor did not finish within {PREPROCESS_SECONDS:g} s: "
+            "a macro expands too far (a macro bomb?)"
+        ) from None
+    out = result.stdout.decode("utf-8", "replace")
+    if result.returncode != 0:
+        log = result.stderr.decode("utf-8", "replace") + out
+        for raw in log.splitlines():
+            match = re.match(r"^ERROR:\s*[^:]*:(\d+):\s*(.*)$", raw)
+            if match:
+                line = int(match.group(1)) - skip
+                raise SourceError(f"{label}:{line}: {match.group(2).strip()}", line)
+        why = "it ran out of memory" if result.returncode < 0 else log.strip()[-300:]
+        raise SourceError(
+            f"{label}: the GLSL preprocessor rejected the file ({why}); "
+            "a macro that expands too far?"
+        )
+    if len(out) > MAX_EXPANDED:
+        raise SourceError(
+            f"{label}: macros expand the file to {len(out) // 1024} KB of code, over the limit "
+            f"of {MAX_EXPANDED // 1024} KB: write the code out instead of generating it"
+        )
+    lines = out.split("\n")
+    body = lines[skip:] if len(lines) > skip else []
+    return "\n".join(body).rstrip("\n") + "\n"
+
+
+def linked_part(root: Path, path: Path) -> Path | None:
+    """The first symbolic link on the way from `root` (included) down to `path`, or None.
+
+    Links are refused rather than followed: a link could name the solutions, another
+    student's folder or a file outside the submission."""
+    try:
+        relative = path.relative_to(root)
+    except ValueError:
+        return path if path.is_symlink() else None
+    current = root
+    if current.is_symlink():
+        return current
+    for part in relative.parts:
+        current = current / part
+        if current.is_symlink():
+            return current
+    return None
