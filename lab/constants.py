@@ -10,6 +10,7 @@ LUMA = (0.2126, 0.7152, 0.0722)  # Rec. 709 luminance weights of linear RGB
 MAX_LIGHTS = 8  # directional lights a view takes at once (uniform array sizes)
 GRAZING_DEG = 87.0  # plots leave out |θo| beyond this when they scale (Ward diverges there)
 PLOT_DECADES = 3.0  # range of the log scale of the polar plot and the 3D lobe
+LOOP_LIMIT = 10_000  # iterations a loop of a model may run per invocation (the loop guard)
 
 
 def as_dict() -> dict[str, object]:
@@ -19,6 +20,7 @@ def as_dict() -> dict[str, object]:
         "MAX_LIGHTS": MAX_LIGHTS,
         "GRAZING_DEG": GRAZING_DEG,
         "PLOT_DECADES": PLOT_DECADES,
+        "LOOP_LIMIT": LOOP_LIMIT,
     }
 
 

@@ -11,7 +11,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lab.constants import glsl_defines
+from lab.constants import LOOP_LIMIT, glsl_defines
 from lab.models import SHADER_DIR, Model, ModelError, Value
 
 TARGETS = ("330", "300es")
@@ -39,7 +39,6 @@ FORBIDDEN_DIRECTIVE = re.compile(r"^\s*#\s*(version|extension|include|line)\b")
 # The loop guard: every loop of a model counts its iterations (per shader invocation) and
 # stops past the bound, recording its line in lab_loop_line. Software rasterizers give up
 # silently after 65,535 iterations and a GPU freezes: the guard makes both say so.
-LOOP_LIMIT = 10_000
 LOOP_HEAD = re.compile(r"\b(for|while)\s*\(")
 COMMENTS = re.compile(r"//[^\n]*|/\*.*?(?:\*/|\Z)", re.S)
 LOOP_GUARD = """int lab_loop_line = 0;

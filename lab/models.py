@@ -10,6 +10,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from lab.constants import LOOP_LIMIT
+
 from lab.resources import data_dir
 
 SHADER_DIR = data_dir("shaders").resolve()
@@ -148,7 +150,7 @@ class Model:
     delta: bool = False
     ambient: str = ""  # the colour parameter that reflects ambient light (@ambient)
     properties: list[str] = field(default_factory=list)  # @property: what tests hold it to
-    loop_limit: int = 10_000  # iterations a loop may run per invocation (lab.glsl's guard)
+    loop_limit: int = LOOP_LIMIT  # iterations a loop may run per invocation (lab.glsl's guard)
 
     def defaults(self) -> dict[str, Value]:
         return {p.name: p.default for p in self.params.values()}

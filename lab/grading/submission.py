@@ -156,3 +156,41 @@ def linked_part(root: Path, path: Path) -> Path | None:
         if current.is_symlink():
             return current
     return None
+
+
+def portability_warnings(model, label: str) -> list[str]:
+    """Compile the model as GLSL ES 3.00, as the web lab does; each error there (code only
+    desktop GLSL accepts, such as pow(x, 5) or max(v, 0) with an int) becomes a warning
+    naming the student's line. Empty when the file is portable or glslang is missing."""
+    from lab.glsl import assemble_fragment
+
+    path = shutil.which("glslangValidator")
+    if path is None:
+        return []
+    try:
+        source = assemble_fragment(model, "probe", target="300es")
+        result = subprocess.run(
+            [path, "--stdin", "-S", "frag"],
+            input=source.text.encode("utf-8"),
+            capture_output=True,
+            timeout=PREPROCESS_SECONDS,
+            preexec_fn=_limit_memory,
+        )
+    except (OSError, ValueError, subprocess.TimeoutExpired):
+        return []
+    if result.returncode == 0:
+        return []
+    warnings = []
+    log = (result.stdout + result.stderr).decode("utf-8", "replace")
+    for raw in log.splitlines():
+        match = re.match(r"^ERROR:\s*\d+:(\d+):\s*(.*)$", raw)
+        if not match:
+            continue
+        file, line = source.origin(int(match.group(1)))
+        if file != label:
+            continue  # only the student's own lines; the lab's code is portable
+        warnings.append(
+            f"{file}:{line}: the web lab (WebGL, GLSL ES 3.00) will reject this line: "
+            f"{match.group(2).strip()}; write float constants such as 5.0 to fix it"
+        )
+    return warnings

@@ -34,7 +34,90 @@ void main() {
 }
 `;
 
-const FORBIDDEN_DIRECTIVE = /^\s*#\s*(version|extension|include)\b/;
+const FORBIDDEN_DIRECTIVE = /^\s*#\s*(version|extension|include|line)\b/;
+
+// The loop guard, as lab/glsl.py writes it: every loop of a model counts its iterations
+// per invocation and stops past the bound, recording its line in lab_loop_line, which the
+// fragment views write to a second output (location 1).
+const LOOP_HEAD = /\b(for|while)\s*\(/g;
+const COMMENTS = /\/\/[^\n]*|\/\*[\s\S]*?(?:\*\/|$(?![\s\S]))/g;
+const LOOP_GUARD = `int lab_loop_line = 0;
+bool lab_loop_step(inout int count, int line) {
+    count += 1;
+    if (count <= LAB_LOOP_LIMIT) return true;
+    if (lab_loop_line == 0) lab_loop_line = line;
+    return false;
+}`;
+const FLAG_OUTPUT = `#undef main
+layout(location = 1) out vec4 lab_loop_flag;
+void main() {
+    lab_view_main();
+    lab_loop_flag = vec4(float(lab_loop_line), 0.0, 0.0, 1.0);
+}`;
+
+function closing(text, start) {
+  let depth = 0;
+  for (let i = start; i < text.length; i++) {
+    if (text[i] === "(") depth += 1;
+    else if (text[i] === ")") {
+      depth -= 1;
+      if (depth === 0) return i;
+    }
+  }
+  return null;
+}
+
+/** `code` with each loop's condition guarded; also the loops' lines (lab/glsl.py's
+ * guard_loops, which the fixtures hold this to). */
+export function guardLoops(code) {
+  const blank = code.replace(COMMENTS, (m) => m.replace(/[^\n]/g, " "));
+  const inserts = [];
+  const lines = [];
+  for (const match of blank.matchAll(LOOP_HEAD)) {
+    const start = match.index + match[0].length - 1;
+    const end = closing(blank, start);
+    if (end === null) continue;
+    const line = blank.slice(0, match.index).split("\n").length;
+    const guard = `lab_loop_step(lab_loop_${lines.length}, ${line})`;
+    let first = start + 1;
+    let second = end;
+    if (match[1] === "for") {
+      let depth = 0;
+      const semis = [];
+      for (let i = start + 1; i < end; i++) {
+        if (blank[i] === "(") depth += 1;
+        else if (blank[i] === ")") depth -= 1;
+        else if (blank[i] === ";" && depth === 0) semis.push(i);
+      }
+      if (semis.length !== 2) continue;
+      first = semis[0] + 1;
+      second = semis[1];
+    }
+    if (blank.slice(first, second).trim()) inserts.push([first, `${guard} && (`], [second, ")"]);
+    else inserts.push([first, guard]);
+    lines.push(line);
+  }
+  inserts.sort((a, b) => b[0] - a[0]);
+  for (const [position, text] of inserts) code = code.slice(0, position) + text + code.slice(position);
+  return { code, lines };
+}
+
+export function loopGuardPrelude(loops, limit) {
+  const counters = Array.from({ length: loops }, (_, k) => `int lab_loop_${k} = 0;`);
+  return [`#define LAB_LOOP_LIMIT ${Math.trunc(limit)}`, LOOP_GUARD, ...counters].join("\n");
+}
+
+/** A view template; a fragment view also writes the loop guard's flag to location 1. */
+export function addView(source, text, label) {
+  const output = "out vec4 frag_color;";
+  if (!text.includes(output) || !text.includes("void main()")) {
+    source.add(text, label);
+    return;
+  }
+  source.add("#define main lab_view_main", "<loop guard>");
+  source.add(text.replace(output, "layout(location = 0) " + output), label);
+  source.add(FLAG_OUTPUT, "<loop guard>");
+}
 
 // Where drivers put the line number in an info log; the first group is the line.
 const LOG_LINE_PATTERNS = [
@@ -149,7 +232,9 @@ export function assembleFragment(model, view, files, { target = "300es", preambl
   addInclude(source, "terms/common.glsl", seen, model, files);
   source.add(uniformDeclarations(model, enums).join("\n"), `${model.path} (parameters)`);
   for (const include of model.includes) addInclude(source, include, seen, model, files);
-  source.add(model.code, model.path);
+  const guarded = guardLoops(model.code);
+  source.add(loopGuardPrelude(guarded.lines.length, constants.LOOP_LIMIT), "<loop guard>");
+  source.add(guarded.code, model.path);
   source.add(`const bool IS_DELTA = ${model.delta ? "true" : "false"};`, "<host>");
   source.add(
     `vec3 AMBIENT_REFLECTANCE() { return ${model.ambient || "vec3(1.0)"}; }`, "<host>");
@@ -159,7 +244,7 @@ export function assembleFragment(model, view, files, { target = "300es", preambl
   }
   const viewKey = `views/${view}.glsl`;
   if (!(viewKey in files)) throw new Error(`no view template shaders/${viewKey}`);
-  source.add(files[viewKey], `shaders/${viewKey}`);
+  addView(source, files[viewKey], `shaders/${viewKey}`);
   return source;
 }
 
