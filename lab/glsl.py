@@ -11,7 +11,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lab.constants import LOOP_LIMIT, glsl_defines
+from lab.constants import glsl_defines
 from lab.models import SHADER_DIR, Model, ModelError, Value
 
 TARGETS = ("330", "300es")

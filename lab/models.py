@@ -11,7 +11,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
-
 from lab.resources import data_dir
 
 SHADER_DIR = data_dir("shaders").resolve()

@@ -12,7 +12,8 @@ import sys
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from lab.glsl import LOOP_LIMIT, label_of
+from lab.constants import LOOP_LIMIT
+from lab.glsl import label_of
 from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
 from lab.models import Model, ModelError, Param, load_model, parse_model
 from lab.render import Light
