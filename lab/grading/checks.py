@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from lab.constants import LUMA
+from lab.geometry import direction
 from lab.glsl import ShaderCompileError, label_of
 from lab.grading.exercise import (
     Check,
