@@ -21,7 +21,13 @@ APP_MODULES = {"PyQt6", "pyqtgraph", "glfw", "matplotlib", "scipy"}
 __all__ = ["UsageError", "check_output", "main", "parse_light", "parse_pair", "parse_rgb"]
 
 # Feature packages add their own sub-commands through a `register(subparsers)` function.
-FEATURE_CLIS = ["lab.app.cli", "lab.grading.cli", "lab.web.cli", "lab.measured.cli"]
+FEATURE_CLIS = [
+    "lab.app.cli",
+    "lab.grading.cli",
+    "lab.grading.course",
+    "lab.web.cli",
+    "lab.measured.cli",
+]
 MAX_SIZE = 4096  # pixels per side: a 4096² float image is 256 MiB already
 
 

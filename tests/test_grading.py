@@ -211,7 +211,7 @@ def test_grade_all_writes_gradebook_and_reports(tmp_path):
 
 def test_classroom_workflow_template_runs_the_grader_and_reporter():
     text = (ROOT / "lab" / "grading" / "templates" / "classroom.yml").read_text()
-    assert "brdf-lab grade exercises/" in text
+    assert "brdf-lab grade $folders --from exercises --seed" in text
     assert "classroom-resources/autograding-grading-reporter@v1" in text
     assert "BRDF-LAB_RESULTS" in text and "steps.brdf-lab.outputs.result" in text
 
