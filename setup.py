@@ -15,8 +15,11 @@ SKIP = shutil.ignore_patterns("node_modules", "__pycache__", "*.pyc", ".*")
 
 class BuildWithData(build_py):
     def run(self) -> None:
+        editable = getattr(self, "editable_mode", False)
+        if not editable:  # a stale build/lib would ship modules deleted since
+            shutil.rmtree(Path(self.build_lib) / "lab", ignore_errors=True)
         super().run()
-        if getattr(self, "editable_mode", False):
+        if editable:
             return
         for name in DATA_FOLDERS:
             target = Path(self.build_lib) / "lab" / "_data" / name

@@ -12,6 +12,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tarfile
 import textwrap
 from pathlib import Path
 
@@ -38,6 +39,11 @@ def sdist(tmp_path_factory) -> Path:
         name = build_meta.build_sdist(str(out))
     finally:
         os.chdir(cwd)
+    with tarfile.open(out / name) as archive:
+        names = archive.getnames()
+    for needed in ("shaders/brdfs/phong.glsl", "solutions/02_phong/phong.glsl", "LICENSE"):
+        assert any(n.endswith(needed) for n in names), needed
+    assert not any("node_modules" in n or "__pycache__" in n for n in names)
     return out / name
 
 

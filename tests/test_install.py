@@ -227,3 +227,19 @@ def test_a_missing_resource_is_one_line_naming_the_repair(installed, tmp_path):
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and result.stderr.endswith("\n"), result.stderr
     assert str(lib / "shaders") in lines[0] and "reinstall" in lines[0]
+
+
+def test_slides_build_from_a_writable_copy_of_the_installed_sources(installed, tmp_path):
+    """site-packages may be read-only: npm and build.mjs run in a copy in the user's cache."""
+    script, _, work = installed
+    code = "from lab.web import slides; print(slides.SLIDES_DIR); print(slides.workdir())"
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path)}
+    env.pop("PYTHONPATH", None)
+    python = script.parent / "python"
+    shipped, workdir = ok(
+        subprocess.run([str(python), "-c", code], cwd=work, capture_output=True, text=True, env=env)
+    ).split()
+    assert Path(shipped).parts[-2:] == ("_data", "slides")
+    assert Path(workdir).is_relative_to(tmp_path)
+    for name in ("lecture.md", "build.mjs", "package-lock.json"):
+        assert (Path(workdir) / name).read_bytes() == (ROOT / "slides" / name).read_bytes()
