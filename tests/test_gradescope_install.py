@@ -221,3 +221,24 @@ def test_gradescope_zip_command_builds_the_wheel_itself(tmp_path, capsys):
     assert main(["gradescope-zip", str(ROOT / "exercises" / "02_phong"), "-o", str(out),
                  "--wheel", str(tmp_path / "nothing.whl")]) == 2  # fmt: skip
     assert "not a brdf_lab-*.whl file" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "command",
+    [["app"], ["watch", "exercises/02_phong/phong.glsl"], ["gallery", "g"]],
+    ids=["app", "watch", "gallery"],
+)
+def test_the_lean_install_names_what_the_desktop_commands_need(autograder, command, tmp_path):
+    root, env, _ = autograder
+    shutil.copytree(ROOT / "exercises" / "02_phong", tmp_path / "exercises" / "02_phong")
+    done = subprocess.run(
+        [str(root / "venv" / "bin" / "brdf-lab"), *command],
+        cwd=tmp_path,
+        env={**env, "QT_QPA_PLATFORM": "offscreen"},
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 2, done.stdout + done.stderr
+    lines = done.stderr.splitlines()
+    assert len(lines) == 1 and "leaves out: install the whole lab" in lines[0], done.stderr
