@@ -242,3 +242,15 @@ def test_the_lean_install_names_what_the_desktop_commands_need(autograder, comma
     assert done.returncode == 2, done.stdout + done.stderr
     lines = done.stderr.splitlines()
     assert len(lines) == 1 and "leaves out: install the whole lab" in lines[0], done.stderr
+
+
+def test_gradescope_and_classroom_install_the_same_system_packages():
+    """The grader needs Mesa (EGL, llvmpipe) and glslang's preprocessor wherever it runs."""
+    templates = ROOT / "lab" / "grading" / "templates"
+    setup = re.search(r'^PACKAGES="([^"]+)"', (templates / "setup.sh").read_text(), re.M)
+    workflow = re.search(r"apt-get install -y --no-install-recommends (.+)$",
+                         (templates / "classroom.yml").read_text(), re.M)  # fmt: skip
+    assert setup and workflow
+    needed = {"libegl1", "libgl1-mesa-dri", "glslang-tools"}
+    assert needed <= set(setup.group(1).split())
+    assert set(workflow.group(1).split()) == needed

@@ -5,8 +5,9 @@
 set -euo pipefail
 AG="${AUTOGRADER_ROOT:-/autograder}"
 SOURCE="$AG/source"
-# Python, and Mesa's software OpenGL (llvmpipe) for rendering without a GPU.
-PACKAGES="python3 python3-venv libegl1 libgl1-mesa-dri"
+# Python, Mesa's software OpenGL (llvmpipe) for rendering without a GPU, and glslang's
+# preprocessor, which the grader reads submissions through.
+PACKAGES="python3 python3-venv libegl1 libgl1-mesa-dri glslang-tools"
 missing=""
 for package in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "ok installed" ||
