@@ -68,6 +68,28 @@ def failed(check: Check, message: str, status: str = "failed", **extra) -> Check
 
 
 LOOP = re.compile(r"\b(for|while|do)\b\s*[({]")
+# for (int i = 0; i < N; ++i): counts to a bound; it ends unless its body changes i.
+COUNTED = re.compile(
+    r"\bfor\s*\(\s*int\s+(\w+)\s*=[^;]+;\s*\1\s*[<>]=?\s*[\w.]+\s*;"
+    r"\s*(\+\+\1|\1\+\+|--\1|\1--|\1\s*[+-]=\s*[1-9]\d*)\s*\)"
+)
+
+
+def _counted(code: str, line: str) -> bool:
+    """A counting loop whose body never assigns its variable: it cannot run for ever."""
+    match = COUNTED.search(line)
+    at = code.find(line)
+    if not match or at < 0:
+        return False
+    name, rest = match.group(1), code[at + match.end() :]
+    depth, end = 0, len(rest)
+    for index, char in enumerate(rest):  # the body: a braced block or one statement
+        depth += {"{": 1, "}": -1}.get(char, 0)
+        if (depth == 0 and char in "};") or depth < 0:
+            end = index
+            break
+    assigns = rf"(?<![\w.]){name}\s*([+\-*/]?=(?!=)|\+\+|--)|(\+\+|--)\s*{name}\b"
+    return re.search(assigns, rest[:end]) is None
 
 
 def loop_hint(code: str, label: str, given: str = "") -> str:
@@ -79,7 +101,8 @@ def loop_hint(code: str, label: str, given: str = "") -> str:
     """
     untouched = {line.strip() for line in given.splitlines()}
     for number, line in enumerate(code.splitlines(), start=1):
-        if LOOP.search(line.split("//")[0]) and line.strip() not in untouched:
+        text = line.split("//")[0]
+        if LOOP.search(text) and line.strip() not in untouched and not _counted(code, text):
             return (
                 f" (note: {label}:{number}: this line starts a loop; if it never ends, llvmpipe "
                 "stops it after 65,535 iterations and the values come out wrong, and a GPU "

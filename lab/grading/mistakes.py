@@ -32,7 +32,7 @@ else:  # pragma: no cover
 MISTAKES_FILE = "mistakes.toml"
 VALUES = "diagnosis.npz"
 HINTS = "diagnosis.json"
-MAX_MUTANTS = 24  # per exercise: each one costs a compile when references are made
+MAX_MUTANTS = 32  # per exercise: each one costs a compile when references are made
 
 # How each name of a dot product or constant reads in a hint.
 SPOKEN = {
@@ -181,6 +181,19 @@ def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
             match.group(1),
             "a dot product is not clamped: it goes negative past 90° (use max(..., 0.0))",
         )
+    for match in re.finditer(r"\b(pow|\w+_\w+)\((\w+), (\w+)([,)])", body):
+        name, a, b, tail = match.groups()
+        if name.startswith("lab_"):
+            continue
+        hint = f"two arguments of {name} behave as if swapped ({b}, {a} instead of {a}, {b})"
+        add(start + match.start(), start + match.end(), f"{name}({b}, {a}{tail}", hint)
+    for match in re.finditer(r"\b(cos|sin|tan)\((\w+)\)", body):
+        trig, angle = match.groups()
+        hint = (
+            f"an angle is taken for degrees where it is in radians: {trig}({angle}) behaves "
+            f"like {trig}(radians({angle}))"
+        )
+        add(start + match.start(), start + match.end(), f"{trig}(radians({angle}))", hint)
     return found[:limit]
 
 
