@@ -398,21 +398,8 @@ def test_bom_helper_names_and_header_edits(tmp_path):
     assert grade_text(tmp_path, "02_phong", default).passed  # the stub's defaults count
 
 
-def test_loop_note_only_when_nothing_explains_the_values(graded):
-    for label in ("pi m^2 cos^4", "cos^2", "degrees"):  # 06 has the Gaussian's loop
-        for result in graded["corpus", "06_microfacet_distributions", label].checks():
+def test_no_loop_note_unless_the_loop_guard_stopped_one(graded):
+    """06's solution loops (Simpson's rule); its wrong submissions are not about the loop."""
+    for key in [k for k in graded if k[1] == "06_microfacet_distributions"]:
+        for result in graded[key].checks():
             assert "loop" not in result.message, result.message
-
-
-def test_loop_note_spares_counting_loops():
-    from lab.grading.checks import loop_hint
-
-    simpson = EXERCISES["06_microfacet_distributions"].solution.read_text(encoding="utf-8")
-    assert loop_hint(simpson, "d.glsl") == ""  # for (int i = 0; i <= STEPS; ++i) ends
-    endless = [
-        simpson.replace("++i)", "i += 0)"),
-        "float f() {\n    float x = 1.0;\n    while (x > 0.0) { x -= 0.1; }\n    return x;\n}",
-        "void f() {\n    for (int i = 0; i < 4; ++i) { i = 0; }\n}",
-    ]
-    for code in endless:
-        assert "starts a loop" in loop_hint(code, "d.glsl"), code
