@@ -174,6 +174,15 @@ def guard_loops(code: str) -> tuple[str, list[int]]:
     return code, lines
 
 
+def loop_warning(model: Model, line: int) -> str:
+    """The loop guard's message for the desktop lab and `watch`."""
+    return (
+        f"{label_of(model.path)}:{line}: the loop at line {line} did not end within "
+        f"{model.loop_limit:,} iterations and was stopped (on a GPU without the lab's guard "
+        "it would freeze the screen): check its exit condition"
+    )
+
+
 def loop_guard_prelude(loops: int, limit: int) -> str:
     """The guard's counters and step function for `loops` loops, bound `limit`."""
     counters = [f"int lab_loop_{k} = 0;" for k in range(loops)]
@@ -245,7 +254,7 @@ def assemble_fragment(
     source.add("\n".join(uniform_declarations(model, enums)), f"{model_label} (parameters)")
     for include in model.includes:
         _add_include(source, include, seen, model)
-    code, loops = guard_loops(model.code)
+    code, loops = guard_loops(model.code) if model.loop_limit > 0 else (model.code, [])
     source.add(loop_guard_prelude(len(loops), model.loop_limit), "<loop guard>")
     source.add(code, model_label)
     source.add(f"const bool IS_DELTA = {'true' if model.delta else 'false'};", "<host>")

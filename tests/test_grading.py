@@ -200,13 +200,16 @@ def test_grade_all_writes_gradebook_and_reports(tmp_path):
         str(out),
     )
     assert done.returncode == 1, done.stderr
+    from lab.grading.students import file_stem
+
     rows = (out / "gradebook.csv").read_text().splitlines()
-    assert rows[0] == "student,01_lambert,02_phong,total,max"
-    assert rows[1].startswith("ada,10,0,10,20") and rows[2].startswith("bob,")
-    assert rows[3] == "cy,0,0,0,20"
-    assert "file not found" in (out / "reports" / "cy.html").read_text()
-    assert '<img src="data:image/png;base64,' in (out / "reports" / "ada.html").read_text()
-    assert json.loads((out / "reports" / "ada.json").read_text())["score"] == 10
+    assert rows[0] == "student,01_lambert,02_phong,total,max,report,note"
+    assert rows[1].startswith("ada,10,0,10,20,") and rows[2].startswith("bob,")
+    assert rows[3] == f"cy,0,0,0,20,reports/{file_stem('cy')}.html,"
+    reports = out / "reports"
+    assert "file not found" in (reports / f"{file_stem('cy')}.html").read_text()
+    assert '<img src="data:image/png;base64,' in (reports / f"{file_stem('ada')}.html").read_text()
+    assert json.loads((reports / f"{file_stem('ada')}.json").read_text())["score"] == 10
 
 
 def test_classroom_workflow_template_runs_the_grader_and_reporter():

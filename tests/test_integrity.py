@@ -112,6 +112,33 @@ HOSTILE = {
 }
 
 
+SOLVED = PHONG.solution.read_text(encoding="utf-8")
+RETURN = "    return kd * INV_PI + ks * pow(RoV, ke);"
+HOSTILE.update(
+    {
+        # 8. right everywhere but at a special direction: Inf at exact normal incidence
+        "inf_at_normal_incidence": (
+            PHONG,
+            SOLVED.replace(RETURN, RETURN.replace(";", " + kd * 1e-12 / (1.0 - NoL);")),
+            ["NaN, infinite or negative"],
+            4,  # the polar and sphere checks never meet L = N exactly
+        ),
+        "inf_at_normal_view": (
+            PHONG,
+            SOLVED.replace(RETURN, RETURN.replace(";", " + kd * 1e-12 / (1.0 - NoV);")),
+            ["NaN, infinite or negative"],
+            4,
+        ),
+        "nan_at_grazing": (
+            PHONG,
+            SOLVED.replace(RETURN, "    if (NoL < 0.002) return vec3(log(-1.0 - NoL));\n" + RETURN),
+            ["NaN"],
+            4,
+        ),
+    }
+)
+
+
 def _write(tmp: Path, name: str, exercise, text: str) -> Path:
     path = tmp / name / exercise.student_file
     path.parent.mkdir(parents=True)
@@ -204,3 +231,154 @@ def test_linked_exercise_folder_is_refused(tmp_path):
     )
     assert result.returncode == 1
     assert "is a symbolic link" in result.stdout and "total 0/10" in result.stdout
+
+
+def test_grade_all_takes_any_class(tmp_path):
+    """Item 7: every entry gets a row under its real name; formulas are escaped; a linked
+    folder and a stray file are listed with the reason and no points; files stay in --out."""
+    import csv
+
+    lambert = ROOT / "exercises" / "01_lambert"
+    solution = (ROOT / "solutions" / "01_lambert" / "lambert.glsl").read_text(encoding="utf-8")
+    names = [
+        "a" * 252,
+        "Zoë Ünïcødé 学生",
+        "line\nbreak",
+        "-rf",
+        ".hidden_student",
+        "..dots",
+        '=HYPERLINK("http://x","y")',
+        "+1+cmd|' /C calc'!A0",
+        "@SUM(1)",
+        "../escape",
+    ]
+    root = tmp_path / "class"
+    root.mkdir()
+    for name in names:
+        folder = root / name.replace("/", "_")
+        (folder / "01_lambert").mkdir(parents=True)
+        (folder / "01_lambert" / "lambert.glsl").write_text(solution, encoding="utf-8")
+    (root / "linked").symlink_to(root / "-rf")
+    (root / "notes.txt").write_text("not a student", encoding="utf-8")
+    out = tmp_path / "grades"
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            MAIN,
+            "grade-all",
+            str(root),
+            "--exercises",
+            str(lambert),
+            "--out",
+            str(out),
+            "--workers",
+            "1",
+            "--similarity",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert result.returncode == 1, result.stdout + result.stderr  # not all full marks
+    with open(out / "gradebook.csv", newline="", encoding="utf-8") as handle:
+        rows = {row["student"]: row for row in csv.DictReader(handle)}
+    graded = [n.replace("/", "_") for n in names]
+    assert len(rows) == len(graded) + 2
+    for name in graded:
+        shown = "'" + name if name[0] in "=+-@" else name
+        assert rows[shown]["total"] == rows[shown]["max"], name
+        assert (out / rows[shown]["report"]).is_file()
+    assert rows["linked"]["total"] == "0" and "symbolic link" in rows["linked"]["note"]
+    assert rows["notes.txt"]["total"] == "0" and "not a folder" in rows["notes.txt"]["note"]
+    written = [p.resolve() for p in out.rglob("*")]
+    assert all(out.resolve() in p.parents for p in written)
+    assert all(len(p.name) < 80 for p in written)
+    assert (out / "similarity.html").is_file() and (out / "similarity.csv").is_file()
+
+
+def test_similarity_sees_copies_through_renaming_and_comments():
+    """A library shader handed in with new names and comments matches the library and the
+    student who copied the same file; a different correct solution does not."""
+    from lab.grading import similarity
+
+    library = (ROOT / "shaders" / "brdfs" / "blinn_phong.glsl").read_text(encoding="utf-8")
+    exercise = load_exercise(ROOT / "exercises" / "03_blinn_phong")
+    disguised = "// my own work\n" + library.replace("NoH", "cosHalf").replace("H", "halfway")
+    own = exercise.solution.read_text(encoding="utf-8").replace(
+        "normalize(L + V)", "(L + V) / length(L + V)"
+    )
+    files = {
+        "copier": {exercise.name: (disguised, None)},
+        "other": {exercise.name: (library, None)},
+        "stub": {exercise.name: (exercise.stub.read_text(encoding="utf-8"), None)},
+    }
+    matches = similarity.compare_class(files, [exercise])
+    pairs = {(m.a.owner, m.b.label) for m in matches}
+    assert ("copier", "shaders/brdfs/blinn_phong.glsl") in pairs
+    assert ("copier", "other/blinn_phong.glsl") in pairs
+    assert not any(m.a.owner == "stub" or m.b.owner == "stub" for m in matches)
+    assert similarity.score(*[similarity.document("x", "x", t, set()) for t in (own, own)]) == 1
+
+
+LAMBERT = load_exercise(ROOT / "exercises" / "01_lambert")
+LAMBERT_BODY = "    return albedo * INV_PI;"
+
+
+def macro_bomb() -> str:
+    """1.3 KB whose macros expand to 2^39 statements."""
+    lines = ["#define A0 x = fract(x * 3.7 + V.y);"]
+    lines += [f"#define A{i} A{i - 1} A{i - 1}" for i in range(1, 40)]
+    text = LAMBERT.solution.read_text(encoding="utf-8")
+    text = text.replace("vec3 BRDF", "\n".join(lines) + "\nvec3 BRDF")
+    return text.replace(LAMBERT_BODY, "    float x = 0.5;\n    A39\n" + LAMBERT_BODY)
+
+
+def test_limits_end_bombs_with_the_cause_and_the_class_goes_on(tmp_path):
+    """Item 6: a macro bomb stops in the preprocessor's time limit; a 50M-element array hits
+    the worker's memory cap; both lose their points with the cause named, every result is
+    written, and the next submission is graded normally."""
+    bomb = _write(tmp_path, "bomb", LAMBERT, macro_bomb())
+    huge = _write(
+        tmp_path,
+        "huge",
+        LAMBERT,
+        LAMBERT.solution.read_text(encoding="utf-8").replace(
+            LAMBERT_BODY,
+            "    float big[50000000];\n    big[int(V.x * 10.0)] = 1.0;\n"
+            "    return albedo * INV_PI * big[3];",
+        ),
+    )
+    tasks = [Task(LAMBERT, bomb), Task(LAMBERT, huge), Task(LAMBERT, LAMBERT.solution)]
+    with Pool(1, timeout=8.0, memory=256 << 20) as pool:
+        pool.run(tasks)
+    assert all(len(t.results) == len(LAMBERT.checks) for t in tasks)
+    assert "a macro expands too far" in tasks[0].checks()[0].message
+    assert "running out of memory (256 MB allowed)" in tasks[1].checks()[0].message
+    assert tasks[0].score == tasks[1].score == 0
+    assert tasks[2].score == tasks[2].max_score
+
+
+def test_portability_warning_names_the_line_and_costs_nothing(tmp_path):
+    """A desktop-only line (an int where ES wants a float) passes with a warning."""
+    text = PHONG.solution.read_text(encoding="utf-8").replace(
+        "max(dot(R, V), 0.0)", "max(dot(R, V), 0)"
+    )
+    task = Task(PHONG, _write(tmp_path, "port", PHONG, text))
+    with Pool(1) as pool:
+        pool.run([task])
+    assert task.score == task.max_score
+    warnings = [w for r in task.checks() for w in r.warnings]
+    assert len(warnings) == 1 and "phong.glsl:14:" in warnings[0] and "web lab" in warnings[0]
+
+
+def test_desktop_lab_warns_about_a_loop_the_guard_stopped(qtbot, window, tmp_path):
+    """Item 5: the desktop lab keeps running and names the loop instead of freezing."""
+    text = (ROOT / "shaders" / "brdfs" / "lambert.glsl").read_text(encoding="utf-8")
+    text = text.replace("@model lambert", "@model looping")
+    head, brace, rest = text.partition("vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {")
+    line = head.count("\n") + 2
+    path = tmp_path / "looping.glsl"
+    path.write_text(head + brace + "\n    float s = 1.0; while (s > 0.0) { s += 1.0; }" + rest)
+    assert window.open_file(path) is not None
+    assert f"looping.glsl:{line}: the loop at line {line} did not end" in window.error_text()

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lab.glsl import ShaderCompileError
+from lab.glsl import ShaderCompileError, loop_warning
 from lab.models import ModelError
 
 PANEL = 320
@@ -177,6 +177,9 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
                 for image in images:
                     rgba = np.ascontiguousarray(image[..., :4])
                     textures.append(ctx.texture((rgba.shape[1], rgba.shape[0]), 4, rgba.tobytes()))
+                stop = renderer.loop_stop()
+                if stop is not None:
+                    print(f"{time.strftime('%H:%M:%S')} warning: {loop_warning(model, stop[0])}")
                 print(f"{time.strftime('%H:%M:%S')} compiled {path.name}: OK")
             except (ModelError, ShaderCompileError) as err:
                 print(

@@ -25,7 +25,7 @@ from lab.app.renderer import AppRenderer
 from lab.app.state import LabState
 from lab.app.views import View
 from lab.app.widgets import ModelList, ParamPanel, SettingSlider
-from lab.glsl import ShaderCompileError
+from lab.glsl import ShaderCompileError, loop_warning
 from lab.measured.model import measured_model
 from lab.models import Model, ModelError, load_model, model_names
 from lab.presets import dump_toml, load_any, read_preset, shipped_presets
@@ -309,7 +309,15 @@ class MainWindow(QMainWindow):
         """Compile the model for the views it is drawn in; raises ShaderCompileError."""
         s = self.lab.settings
         self.renderer.sphere(model, model.defaults(), (s["theta_i"], s["phi_i"]), size=8)
+        stop = self.renderer.loop_stop()
         self.renderer.polar(model, model.defaults(), s["theta_i"], s["phi_i"])
+        stop = stop or self.renderer.loop_stop()
+        if stop is not None:  # the guard kept the GPU alive: say which loop it stopped
+            self.show_error(
+                str(model.path),
+                ValueError(loop_warning(model, stop[0])),
+                "the loop guard stopped a loop; the views show what it had computed",
+            )
 
     def show_error(self, path: str, err: Exception, outcome: str | None = None) -> None:
         outcome = outcome or "the last good version keeps running"

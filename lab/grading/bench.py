@@ -108,6 +108,67 @@ def diagnosis_cost(repeat: int = 5) -> list[tuple]:
     return figures
 
 
+# A model with a loop in every evaluation (a 24-term series), for the loop guard's cost.
+LOOP_MODEL = """// @model series
+// @param kd color 0.5 0.5 0.5 | albedo
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    float x = max(dot(N, L), 0.0) * max(dot(N, V), 0.0), term = 1.0, sum = 0.0;
+    for (int k = 1; k <= 24; k++) {
+        sum += term;
+        term *= x / float(k);
+    }
+    return kd * sum / (3.14159265 * 2.718281828);
+}
+"""
+
+
+def loop_guard_cost(size: int = 512, repeat: int = 15) -> tuple[float, float, float, float]:
+    """Median ms per size² sphere: the series model guarded and not, phong guarded and not
+    (the guard adds its flag output even where there is no loop)."""
+    from dataclasses import replace
+
+    from lab.models import load_model, parse_model
+    from lab.render import Renderer
+
+    renderer = Renderer()
+    series = parse_model(LOOP_MODEL, ROOT / "series.glsl")
+    phong = load_model("phong")
+    figures = []
+    for model in (series, phong):
+        for limit in (model.loop_limit, 0):
+            variant = replace(model, loop_limit=limit)
+            renderer.sphere(variant, size=size, readback=False)  # compile, warm up
+            times = []
+            for _ in range(repeat):
+                start = time.perf_counter()
+                renderer.sphere(variant, size=size, readback=False)
+                times.append(time.perf_counter() - start)
+            figures.append(1000 * statistics.median(times))
+    return tuple(figures)
+
+
+def similarity_seconds(students: int = 200) -> tuple[float, int]:
+    """Seconds for the similarity report of a made-up class (texts only), and pairs listed."""
+    from lab.grading import similarity
+
+    exercises = find_exercises(ROOT / "exercises")
+    folder = Path(tempfile.mkdtemp(prefix="brdf-similarity-bench-"))
+    try:
+        make_class(folder, students)
+        start = time.perf_counter()
+        files = {}
+        for student in sorted(folder.iterdir()):
+            files[student.name] = {
+                e.name: ((student / e.name / e.student_file).read_text(encoding="utf-8"), None)
+                for e in exercises
+            }
+        matches = similarity.compare_class(files, exercises)
+        similarity.write_html(matches, folder / "similarity.html")
+        return time.perf_counter() - start, len(matches)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 def run(submissions: int = 100, workers: int = 2, repeat: int = 5) -> None:
     """Print the figures the issue asks for."""
     for name, plain, diagnosed, hidden, failed, said in diagnosis_cost():
@@ -125,6 +186,14 @@ def run(submissions: int = 100, workers: int = 2, repeat: int = 5) -> None:
     print(f"bare python + moderngl context:          {bare:6.3f} s")
     print(f"grade one exercise (01_lambert):          {one:6.3f} s  (+{one - bare:.3f} s)")
     print(f"grade all 9 exercises of one student:     {every:6.3f} s  (+{every - bare:.3f} s)")
+    series, series_bare, phong, phong_bare = loop_guard_cost()
+    print(
+        f"loop guard, 512² sphere: a 24-step loop {series:.2f} ms vs {series_bare:.2f} ms "
+        f"unguarded ({100 * (series / series_bare - 1):+.1f}%); phong (no loop) {phong:.2f} ms "
+        f"vs {phong_bare:.2f} ms ({100 * (phong / phong_bare - 1):+.1f}%)"
+    )
+    seconds, pairs = similarity_seconds(200)
+    print(f"similarity report, 200 students x 9 exercises (texts): {seconds:.1f} s, {pairs} pairs")
     folder = Path(tempfile.mkdtemp(prefix="brdf-grade-bench-"))
     try:
         counts = make_class(folder / "class", submissions)
@@ -142,6 +211,7 @@ def run(submissions: int = 100, workers: int = 2, repeat: int = 5) -> None:
                 str(folder / "grades"),
                 "--workers",
                 str(workers),
+                "--similarity",
             ],
             cwd=ROOT,
             capture_output=True,

@@ -25,6 +25,7 @@ from lab.grading.exercise import (
     read_submission,
     wrapper_origin,
 )
+from lab.grading.submission import portability_warnings
 from lab.grading.visuals import failing_overlay, signed_difference
 from lab.models import Model, ModelError
 from lab.render import Light, Renderer, light_uniforms
@@ -54,6 +55,7 @@ class CheckResult:
     setting: dict | None = None  # hidden mode: the seed and parameter values used
     threshold: float = 0.0  # sphere: the per-pixel threshold (1/255) of the difference image
     loop_line: int = 0  # the student's line of a loop the guard stopped (0: none did)
+    warnings: list[str] = field(default_factory=list)  # not scored: e.g. the web lab rejects
 
     @property
     def passed(self) -> bool:
@@ -68,7 +70,8 @@ def failed(check: Check, message: str, status: str = "failed", **extra) -> Check
 
 # -- inputs: direction pairs, hidden variants -----------------------------------------------
 def probe_angles(check: Check) -> np.ndarray:
-    """(pairs, 4) rows theta_i, phi_i, theta_o, phi_o in degrees, fixed by the check's seed.
+    """(pairs + 18, 4) rows theta_i, phi_i, theta_o, phi_o in degrees, fixed by the check's
+    seed; the last 18 are the special directions (special_angles).
 
     Half the pairs are spread over the hemisphere, 3/8 lie near the mirror direction
     (where the highlights are) and 1/8 have L or V below the horizon (must give 0).
@@ -88,7 +91,38 @@ def probe_angles(check: Check) -> np.ndarray:
     flip_light = rng.random(n_below) < 0.5
     theta_i[below] = np.where(flip_light, 180.0 - theta_i[below], theta_i[below])
     theta_o[below] = np.where(flip_light, theta_o[below], 180.0 - theta_o[below])
-    return np.stack([theta_i, phi_i % 360.0, theta_o, phi_o % 360.0], axis=1)
+    rows = np.stack([theta_i, phi_i % 360.0, theta_o, phi_o % 360.0], axis=1)
+    return np.concatenate([rows, special_angles(float(rng.uniform(0.0, 360.0)))])
+
+
+def special_angles(phi: float) -> np.ndarray:
+    """Rows where formulas divide by zero or lose precision: L = N, V = N, L = V, the exact
+    mirror direction, beside it in the plane of incidence and across it, and 89.9 degrees
+    from the normal (an Inf or NaN at any of them fails the check)."""
+    back = phi + 180.0
+    rows = [
+        (0.0, 0.0, 0.0, 0.0),  # L = V = N
+        (0.0, 0.0, 35.0, phi),  # L = N
+        (0.0, 0.0, 70.0, back),
+        (35.0, phi, 0.0, 0.0),  # V = N
+        (70.0, phi, 0.0, 0.0),
+        (30.0, phi, 30.0, phi),  # L = V
+        (75.0, phi, 75.0, phi),
+        (20.0, phi, 20.0, back),  # the exact mirror direction
+        (45.0, phi, 45.0, back),
+        (70.0, phi, 70.0, back),
+        (45.0, phi, 35.0, back),  # in the plane of incidence, beside the mirror
+        (45.0, phi, 55.0, back),
+        (45.0, phi, 45.0, phi + 90.0),  # perpendicular to the plane of incidence
+        (45.0, phi, 45.0, phi + 270.0),
+        (89.9, phi, 30.0, back),  # grazing light, grazing view, both
+        (30.0, phi, 89.9, back),
+        (89.9, phi, 89.9, back),
+        (89.9, phi, 89.9, phi + 90.0),
+    ]
+    table = np.array(rows, dtype=np.float64)
+    table[:, [1, 3]] %= 360.0
+    return table
 
 
 def polar_angles(check: Check) -> np.ndarray:
@@ -369,6 +403,7 @@ class Grader:
             for _, check in todo:
                 yield failed(check, str(err), status="error")
             return
+        warnings = portability_warnings(model, label_of(submission))
         for index, check in todo:
             try:
                 if seed is not None:
@@ -381,7 +416,14 @@ class Grader:
                 continue
             result = self.grade(exercise, check, model, code, expected, live=seed is not None)
             if seed is not None:
-                result.setting = {"seed": seed, "params": check.params, "theta_i": check.theta_i}
+                result.setting = {
+                    "seed": seed,
+                    "params": check.params,
+                    "theta_i": check.theta_i,
+                    "lights": [(lt.theta, lt.phi) for lt in check.lights],
+                    "probe_seed": check.seed,
+                }
+            result.warnings, warnings = warnings, []  # said once, with the first check
             yield result
 
     def grade(

@@ -29,8 +29,11 @@ def locate(student: Path, exercise) -> Path:
         student / exercise.student_file,
     ]
     for candidate in candidates:
-        if candidate.exists() or candidate.is_symlink():
-            return candidate
+        try:
+            if candidate.exists() or candidate.is_symlink():
+                return candidate
+        except OSError:  # a name too long for the file system: the read will say so
+            continue
     return candidates[-1]
 
 
@@ -112,12 +115,13 @@ def cmd_grade_all(args) -> int:
 
     from lab.grading import report
     from lab.grading.runner import Pool, Task
+    from lab.grading.students import file_stem, find_students, printable
 
     root = Path(args.submissions)
     if not root.is_dir():
         raise UsageError(f"{root}: not a folder (give one sub-folder per student)")
     exercises = _exercises(args.exercises)
-    students = sorted(p for p in root.iterdir() if p.is_dir() and not p.name.startswith("."))
+    students = find_students(root)
     if not students:
         raise UsageError(f"{root}: no student sub-folders in it")
     out = Path(args.out)
@@ -125,39 +129,101 @@ def cmd_grade_all(args) -> int:
         (out / "reports").mkdir(parents=True, exist_ok=True)
     except OSError as err:
         raise UsageError(f"cannot create {out}: {err.strerror}") from None
-    tasks = {
-        s.name: [Task(e, locate(s, e), args.seed, key=f"{s.name}/{e.name}") for e in exercises]
-        for s in students
-    }
+    tasks: dict[str, list[Task]] = {}
+    owner: dict[str, str] = {}
+    for number, student in enumerate(students):
+        if student.refused:
+            print(f"not graded: {printable(student.name)}: {student.refused}")
+            tasks[student.name] = [
+                refused_task(e, student.path, student.refused) for e in exercises
+            ]
+            continue
+        mine = []
+        for e in exercises:
+            key = f"{number}/{e.name}"
+            owner[key] = student.name
+            mine.append(Task(e, locate(student.path, e), args.seed, key=key, root=student.path))
+        tasks[student.name] = mine
     remaining = {name: len(ts) for name, ts in tasks.items()}
     start = time.monotonic()
+    graded = [t for ts in tasks.values() for t in ts if t.key]
+
+    def write_reports(student: str) -> None:
+        mine = tasks[student]
+        stem = out / "reports" / file_stem(student)
+        try:  # one student's report never stops the class
+            html = report.html_report(mine, f"Grading report: {printable(student)}")
+            stem.with_suffix(".html").write_text(html, encoding="utf-8")
+            report.write_json(
+                report.gradescope(mine, sum(t.seconds for t in mine)), stem.with_suffix(".json")
+            )
+        except (OSError, ValueError) as err:
+            print(f"could not write the report of {printable(student)}: {err}")
+
+    for name, ts in tasks.items():
+        if not any(t.key for t in ts):
+            write_reports(name)
     with Progress() as progress, Pool(args.workers, args.timeout) as pool:
-        bar = progress.add_task(
-            f"grading {len(students)} students", total=len(students) * len(exercises)
-        )
+        bar = progress.add_task(f"grading {len(students)} students", total=len(graded))
 
         def done(task: Task) -> None:
             progress.advance(bar)
-            student = task.key.split("/")[0]
+            student = owner[task.key]
             remaining[student] -= 1
             if remaining[student] == 0:  # write as we go: a long run leaves partial results
-                mine = tasks[student]
-                html = report.html_report(mine, f"Grading report: {student}")
-                (out / "reports" / f"{student}.html").write_text(html, encoding="utf-8")
-                report.write_json(
-                    report.gradescope(mine, sum(t.seconds for t in mine)),
-                    out / "reports" / f"{student}.json",
-                )
+                write_reports(student)
 
-        pool.run([t for ts in tasks.values() for t in ts], done)
+        pool.run(graded, done)
     seconds = time.monotonic() - start
     report.gradebook(list(tasks.items()), [e.name for e in exercises], out / "gradebook.csv")
+    if args.similarity:
+        similarity_report(tasks, exercises, out)
     full = sum(1 for ts in tasks.values() if all(t.passed for t in ts))
     print(
         f"graded {len(students)} students x {len(exercises)} exercises in {seconds:.1f} s; "
-        f"{full} with full marks; wrote {out / 'gradebook.csv'} and {out / 'reports'}/"
+        f"{full} with full marks; wrote {out / 'gradebook.csv'} and {out / 'reports'}/ "
+        "(report files are named slug-hash; the gradebook's 'report' column names each)"
     )
     return 0 if full == len(students) else 1
+
+
+def similarity_report(tasks: dict, exercises, out: Path) -> None:
+    """similarity.html and similarity.csv in `out`: pairs of students, and students and the
+    library, with much code in common or the same wrong values."""
+    from lab.grading import similarity
+    from lab.grading.exercise import SubmissionError, read_submission
+
+    start = time.monotonic()
+    files: dict[str, dict] = {}
+    for student, mine in tasks.items():
+        for task in mine:
+            if not task.key:
+                continue  # refused (a link): nothing of theirs to read
+            try:
+                text = read_submission(task.submission, task.root)
+            except SubmissionError:
+                continue
+            files.setdefault(student, {})[task.exercise.name] = (text, task)
+    matches = similarity.compare_class(files, exercises)
+    similarity.write_csv(matches, out / "similarity.csv")
+    similarity.write_html(matches, out / "similarity.html")
+    print(
+        f"similarity: {len(matches)} pairs listed in {out / 'similarity.html'} "
+        f"({time.monotonic() - start:.1f} s)"
+    )
+
+
+def refused_task(exercise, path: Path, why: str):
+    """A task that is not graded: every check scores 0 with the reason."""
+    from lab.grading.checks import CheckResult
+    from lab.grading.runner import Task
+
+    task = Task(exercise, path)
+    for check in exercise.checks:
+        task.results[check.name] = CheckResult(
+            check.name, check.kind, check.points, status="error", message=why
+        )
+    return task
 
 
 def cmd_gradescope_zip(args) -> int:
@@ -213,6 +279,11 @@ def register(sub) -> None:
     p.add_argument("--workers", type=int, default=workers, help=f"processes (default {workers})")
     p.add_argument("--seed", type=int, help="hidden mode: random parameters and lights")
     p.add_argument("--timeout", type=float, default=10.0, help="seconds per check (default 10)")
+    p.add_argument(
+        "--similarity",
+        action="store_true",
+        help="also write similarity.html/.csv: shared code between students and the library",
+    )
     p.set_defaults(func=cmd_grade_all)
 
     p = sub.add_parser("gradescope-zip", help="build a Gradescope autograder zip")

@@ -22,7 +22,9 @@ def points(value: float) -> str:
 
 def check_text(result: CheckResult) -> str:
     """The message of a check with its failing rows and compile errors, as plain text."""
-    lines = [result.message]
+    lines = [result.message, *(f"warning: {w}" for w in result.warnings)]
+    if result.setting:
+        lines.append(_setting_text(result.setting))
     if result.rows and not result.passed:
         lines.append("  ".join(ROW_HEADER))
         lines += ["  ".join(str(v) for v in row) for row in result.rows]
@@ -56,6 +58,10 @@ def terminal(tasks: list[Task], console=None) -> None:
                 f"  {mark} {result.name:28s} {points(result.points):>4}/"
                 f"{points(result.max_points):<4} {escape(result.message)}"
             )
+            for warning in result.warnings:
+                console.print("       [yellow]warning:[/] " + escape(warning))
+            if result.setting:
+                console.print("       [dim]" + escape(_setting_text(result.setting)) + "[/]")
             for row in result.rows[:3] if not result.passed else []:
                 console.print(
                     "       "
@@ -178,9 +184,12 @@ def _setting_text(setting: dict) -> str:
         else f"{k}={v:.4g}"
         for k, v in setting.get("params", {}).items()
     )
+    lights = "; ".join(f"θ = {t:.1f}°, φ = {p:.1f}°" for t, p in setting.get("lights", []))
     return (
         f"hidden mode: seed {setting['seed']}; parameters {values or 'the defaults'}; "
         f"light at θi = {setting.get('theta_i', 0):.1f}°"
+        + (f"; sphere lights {lights}" if lights else "")
+        + f" (reproduce with: brdf-lab grade EXERCISE --submission FILE --seed {setting['seed']})"
     )
 
 
@@ -252,17 +261,24 @@ def html_report(tasks: list[Task], title: str = "Grading report") -> str:
 
 
 def gradebook(rows: list[tuple[str, list[Task]]], exercises: list[str], path: Path) -> None:
-    """CSV: one line per student, one column per exercise, then the total and maximum."""
+    """CSV: one line per student, one column per exercise, then the total and maximum,
+    the student's report file and why a student was not graded. Names keep their real
+    text, escaped so that no cell is read as a formula."""
+    from lab.grading.students import cell, file_stem
+
     with open(path, "w", newline="", encoding="utf-8") as handle:
         writer = csv.writer(handle)
-        writer.writerow(["student", *exercises, "total", "max"])
+        writer.writerow(["student", *exercises, "total", "max", "report", "note"])
         for student, tasks in rows:
             by_name = {t.exercise.name: t for t in tasks}
+            refused = {r.message for t in tasks for r in t.results.values() if not t.key}
             writer.writerow(
                 [
-                    student,
+                    cell(student),
                     *(points(by_name[n].score) for n in exercises),
                     points(sum(t.score for t in tasks)),
                     points(sum(t.max_score for t in tasks)),
+                    f"reports/{file_stem(student)}.html",
+                    cell("; ".join(sorted(refused))),
                 ]
             )

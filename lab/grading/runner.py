@@ -11,6 +11,8 @@ per worker, not one per file.
 from __future__ import annotations
 
 import multiprocessing
+import os
+import signal
 import time
 import traceback
 from collections import deque
@@ -25,6 +27,8 @@ from lab.grading.explain import Explainer
 
 RECYCLE_AFTER = 60  # tasks per worker: drops the programs compiled for old submissions
 MAX_TIMEOUTS = 2  # per task: after this many, the remaining checks are not run
+MEMORY_LIMIT = 2 << 30  # bytes a worker may map beyond its own start (the GL context, Python)
+MAX_CHECKS = 16  # checks of one task the CPU-time cap allows for
 
 
 @dataclass
@@ -63,10 +67,49 @@ class Task:
         return [c for c in self.exercise.checks if c.name not in self.results]
 
 
-def _serve(conn: Connection) -> None:
-    """Child: grade tasks sent over `conn`, streaming one message per check."""
+def _address_space() -> int:
+    """Bytes of address space this process maps now (Linux), or 0 where unknown."""
+    try:
+        with open("/proc/self/statm", encoding="ascii") as handle:
+            return int(handle.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _limit(memory: int, cpu_seconds: float) -> None:
+    """Cap this worker: `memory` bytes beyond what it maps now (the driver and Python need
+    their share first) and `cpu_seconds` more of CPU time (SIGXCPU ends it past that)."""
+    try:
+        import resource
+    except ImportError:  # pragma: no cover - Windows: the supervisor's time limit remains
+        return
+    if memory:
+        cap = _address_space() + memory  # the soft limit: the preprocessor sets its own
+        resource.setrlimit(resource.RLIMIT_AS, (cap, resource.getrlimit(resource.RLIMIT_AS)[1]))
+    if cpu_seconds:
+        usage = resource.getrusage(resource.RUSAGE_SELF)
+        used = usage.ru_utime + usage.ru_stime
+        hard = resource.getrlimit(resource.RLIMIT_CPU)[1]
+        soft = int(used + cpu_seconds) + 1
+        if hard != resource.RLIM_INFINITY:
+            soft = min(soft, hard)
+        resource.setrlimit(resource.RLIMIT_CPU, (soft, hard))
+
+
+def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
+    """Child: grade tasks sent over `conn`, streaming one message per check.
+
+    The GL context is made first; then the worker's memory is capped, and before each task
+    its CPU time, so a compile bomb or a huge array ends this process, not the machine."""
     grader = Grader()
     grader.explainer = Explainer(grader)
+    try:
+        grader.renderer  # noqa: B018 - the context, before the cap
+    except Exception as err:  # noqa: BLE001 - no GL: every task reports it
+        detail = traceback.format_exception_only(type(err), err)[-1].strip()
+        grader = None
+    if memory:
+        _limit(memory, 0.0)
     while True:
         try:
             job = conn.recv()
@@ -75,12 +118,19 @@ def _serve(conn: Connection) -> None:
         if job is None:
             return
         key, folder, submission, root, seed, skip = job
+        if grader is None:
+            conn.send(("crash", key, f"internal grader error: no OpenGL context ({detail})"))
+            continue
         try:
+            if cpu_seconds:
+                _limit(0, cpu_seconds)
             exercise = load_exercise(folder)
             root = Path(root) if root else None
             for result in grader.run(exercise, Path(submission), seed, frozenset(skip), root):
                 conn.send(("check", key, result))
             conn.send(("done", key, None))
+        except MemoryError:
+            conn.send(("crash", key, f"the shader needs more than the {memory >> 20} MB allowed"))
         except Exception as err:  # the grader must report, never die: say what broke
             detail = traceback.format_exception_only(type(err), err)[-1].strip()
             conn.send(("crash", key, f"internal grader error: {detail}"))
@@ -98,9 +148,11 @@ def start_method() -> str:
 
 
 class _Worker:
-    def __init__(self, context) -> None:
+    def __init__(self, context, memory: int = 0, cpu_seconds: float = 0.0) -> None:
         self.conn, child = context.Pipe()
-        self.process = context.Process(target=_serve, args=(child,), daemon=True)
+        self.process = context.Process(
+            target=_serve, args=(child, memory, cpu_seconds), daemon=True
+        )
         self.process.start()
         child.close()
         self.task: Task | None = None
@@ -131,15 +183,22 @@ class _Worker:
 
 
 class Pool:
-    """Grades tasks on `workers` child processes; each check gets `timeout` seconds."""
+    """Grades tasks on `workers` child processes; each check gets `timeout` seconds of wall
+    time, each task `timeout` x checks of CPU time, each worker `memory` bytes (0: no cap)."""
 
-    def __init__(self, workers: int = 1, timeout: float = 10.0) -> None:
+    def __init__(self, workers: int = 1, timeout: float = 10.0, memory: int = MEMORY_LIMIT) -> None:
         self.size = max(1, workers)
         self.timeout = timeout
+        self.memory = memory
         self.context = multiprocessing.get_context(start_method())
         if self.context.get_start_method() == "forkserver":
             self.context.set_forkserver_preload(["lab.grading.checks"])
-        self.workers: list[_Worker | None] = [_Worker(self.context) for _ in range(self.size)]
+        self.workers: list[_Worker | None] = [self._start() for _ in range(self.size)]
+
+    def _start(self) -> _Worker:
+        # CPU time per task: every check's time limit, plus the compiles and the context
+        cpu = self.timeout * (MAX_CHECKS + 2)
+        return _Worker(self.context, self.memory, cpu)
 
     def close(self) -> None:
         for worker in self.workers:
@@ -162,7 +221,7 @@ class Pool:
             for slot, worker in enumerate(self.workers):
                 if queue and (worker is None or worker.task is None):
                     if worker is None:
-                        worker = self.workers[slot] = _Worker(self.context)
+                        worker = self.workers[slot] = self._start()
                     task = queue.popleft()
                     task.started = task.started or time.monotonic()
                     worker.send(task, self.timeout)
@@ -180,7 +239,8 @@ class Pool:
                         queue,
                         on_done,
                         f"did not finish within {self.timeout:g} s and was stopped "
-                        "(an endless or very long loop, or code too large to compile?)",
+                        "(an endless or very long loop, a huge array, or code too large "
+                        "to compile?)",
                     )
         return tasks
 
@@ -194,7 +254,7 @@ class Pool:
         try:
             kind, _, payload = worker.conn.recv()
         except (EOFError, OSError):
-            self._abandon(worker, queue, on_done, "crashed the renderer")
+            self._abandon(worker, queue, on_done, self._why_ended(worker))
             return
         if kind == "check":
             task.results[payload.name] = payload
@@ -211,6 +271,21 @@ class Pool:
         if worker.done >= RECYCLE_AFTER:
             worker.stop()
             self.workers[self.workers.index(worker)] = None
+
+    def _why_ended(self, worker: _Worker) -> str:
+        """Why a worker died, from its exit status, in words for the student."""
+        worker.process.join(timeout=5)
+        code = worker.process.exitcode
+        if code == -signal.SIGXCPU:
+            return (
+                "used up its CPU time and was stopped (an endless loop, or code too large "
+                "to compile?)"
+            )
+        limit = f"{self.memory >> 20} MB" if self.memory else "the machine's memory"
+        return (
+            f"crashed the renderer (exit status {code}), most likely by running out of "
+            f"memory ({limit} allowed): a huge array, or macros that expand too far?"
+        )
 
     def _abandon(self, worker: _Worker, queue: deque, on_done, why: str) -> None:
         """Kill a stuck or crashed worker; score its check 0 and requeue the rest."""
