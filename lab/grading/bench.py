@@ -174,7 +174,7 @@ def run(submissions: int = 100, workers: int = 2, repeat: int = 5) -> None:
     for name, plain, diagnosed, hidden, failed, said in diagnosis_cost():
         print(
             f"wrong {name:28s} {plain:5.3f} s, diagnosed {diagnosed:5.3f} s "
-            f"(+{diagnosed - plain:.3f} s, {said} of {failed} failed checks named), "
+            f"({diagnosed - plain:+.3f} s, {said} of {failed} failed checks named), "
             f"hidden mode {hidden:5.3f} s"
         )
     lambert = ROOT / "exercises" / "01_lambert"

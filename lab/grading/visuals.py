@@ -124,8 +124,9 @@ def polar_svg(curve: dict, failing: list[int], width: int = 420) -> str:
     parts.append(
         f'<line x1="{cx}" y1="{cy}" x2="{cx + radius * math.sin(a):.1f}" '
         f'y2="{cy - radius * math.cos(a):.1f}" stroke="#d4a017" stroke-dasharray="4 3"/>'
-        f'<text x="{cx + (radius + 4) * math.sin(a) - 14:.1f}" '
-        f'y="{cy - (radius + 4) * math.cos(a) - 2:.1f}" font-size="11" fill="#a07c00">light</text>'
+        f'<text x="{cx + 0.85 * radius * math.sin(a) + 4:.1f}" '
+        f'y="{cy - 0.85 * radius * math.cos(a) + 12:.1f}" font-size="11" fill="#a07c00">'
+        "light</text>"
         "</svg>"
     )
     legend = (
