@@ -20,5 +20,6 @@ if [ -n "$missing" ]; then
     rm -rf /var/lib/apt/lists/*
 fi
 python3 -m venv "$AG/venv"
-"$AG/venv/bin/python" -m pip install --no-cache-dir --no-deps "$SOURCE"/brdf_lab-*.whl
+# The core set first: pip then has nothing to complain about when the wheel comes --no-deps.
 "$AG/venv/bin/python" -m pip install --no-cache-dir -r "$SOURCE/requirements-core.txt"
+"$AG/venv/bin/python" -m pip install --no-cache-dir --no-deps "$SOURCE"/brdf_lab-*.whl
