@@ -11,6 +11,7 @@ import json
 import os
 import shutil
 import subprocess
+import sys
 import urllib.request
 from pathlib import Path
 
@@ -99,7 +100,11 @@ def test_render_gives_the_same_pixels_as_the_clone(installed, tmp_path):
     script, _, work = installed
     args = ["render", "phong", "--set", "ke=40", "--light", "30,0", "--size", "128"]
     ok(run(script, *args, "-o", "p.png", cwd=work))
-    ok(run(ROOT / ".venv" / "bin" / "brdf-lab", *args, "-o", str(tmp_path / "c.png"), cwd=ROOT))
+    ok(
+        run(
+            Path(sys.executable).parent / "brdf-lab", *args, "-o", str(tmp_path / "c.png"), cwd=ROOT
+        )
+    )
     mine, clone = np.asarray(Image.open(work / "p.png")), np.asarray(Image.open(tmp_path / "c.png"))
     assert mine.shape[:2] == (128, 128) and mine.max() > 200 and mine[0, 0, :3].max() < 10
     np.testing.assert_array_equal(mine, clone)
