@@ -36,7 +36,9 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     if (NoL <= 0.0 || NoV <= 0.0) return vec3(0.0);
     vec3 H = normalize(L + V);
     float NoH = dot(N, H);
-    float VoH = dot(V, H);
+    // V.H = |L + V| / 2 for unit L, V: accurate where dot(V, H) is not, at grazing mirror
+    // pairs (L + V nearly vertical, its tilt error times |V| = 1 would swamp V.H there).
+    float VoH = 0.5 * length(L + V);
     float D = microfacet_D(NoH);
     float G = G_vgroove(NoL, NoV, NoH, VoH);
     vec3 F = fresnel_F(VoH);

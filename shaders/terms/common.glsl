@@ -5,9 +5,10 @@ const float EPS = 1e-7;
 
 float sqr(float x) { return x * x; }
 
-// tan^2 of the angle whose cosine is c (c in (0, 1]).
+// tan^2 of the angle whose cosine is c (c in (0, 1]). The floor on c^2 only keeps it finite
+// (1e-30, not EPS: a floor of 1e-7 would freeze tan^2 at 1e7 from 89.98 degrees on).
 float tan2_from_cos(float c) {
-    float c2 = max(c * c, EPS);
+    float c2 = max(c * c, 1e-30);
     return max(1.0 - c2, 0.0) / c2;
 }
 

@@ -43,8 +43,17 @@ float D_gaussian(float NoH, float beta) {
 }
 
 // Trowbridge-Reitz / GGX (Walter et al. 2007), alpha = roughness; integrates to 1.
+// d = cos^2 (a^2 - 1) + 1 = a^2 cos^2 + sin^2.
 float D_ggx(float NoH, float alpha) {
     float a2 = alpha * alpha;
     float d = NoH * NoH * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
+
+// The same D from sin^2 = |N x H|^2, which float32 keeps accurate near the peak (1 - cos^2
+// there loses the digits that a sharp lobe, alpha = 0.01, depends on).
+float D_ggx_sin2(float NoH, float sin2, float alpha) {
+    float a2 = alpha * alpha;
+    float d = a2 * NoH * NoH + sin2;
     return a2 / (PI * d * d);
 }
