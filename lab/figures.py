@@ -51,13 +51,14 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     # Off-specular peak: at grazing incidence Cook-Torrance peaks beyond the mirror angle.
     fig, ax = plots._figure(polar=True)
     theta_i = 75.0
-    for name, values, color in (
-        ("phong", {"kd": (0.0,) * 3, "ks": (0.2,) * 3, "ke": 20.0}, "tab:blue"),
-        ("cook_torrance", {"kd": (0.0,) * 3, "m": 0.35, "f0": (0.04,) * 3}, "tab:red"),
-    ):
-        lobe = renderer.polar(name, values, theta_i, cos_weighted=True)
-        plots.polar_axes(ax, lobe, name, color, normalize=True)
-    plots.style_polar(ax, theta_i, "f_r cos θo (each scaled to its peak)")
+    lobes = [
+        (renderer.polar(name, values, theta_i, cos_weighted=True), name, color)
+        for name, values, color in (
+            ("phong", {"kd": (0.0,) * 3, "ks": (0.2,) * 3, "ke": 20.0}, "tab:blue"),
+            ("cook_torrance", {"kd": (0.0,) * 3, "m": 0.35, "f0": (0.04,) * 3}, "tab:red"),
+        )
+    ]
+    plots.draw_polar(ax, lobes, theta_i, "f_r cos θo (each scaled to its peak)", normalize=True)
     path = outdir / "off_specular_peak.png"
     fig.tight_layout()
     fig.savefig(path, bbox_inches="tight")

@@ -376,3 +376,26 @@ def test_error_for_a_file_that_never_compiled(qtbot, window, tmp_path):
     assert "last good version" not in text
     window.step_preset(to=0)
     assert window.error_dock.isHidden()
+
+
+def test_polar_view_scale_legend_and_light_side(qtbot, window, output_dir):
+    """The shared scale (grazing values left out, clipped ones marked and named), ring labels,
+    a legend naming the unit and each model, and the light on the right as on the spheres."""
+    window.lab.add(load_model("ward"))
+    window.lab.settings.set("theta_i", 75.0)
+    settle(qtbot, window)
+    view = window.view("polar")
+    scale = view.scale
+    assert scale is not None and scale.clipped and len(view.clip_marks.xData) > 0
+    legend = view.legend.text()
+    assert "sr⁻¹" in legend and "ward" in legend and "clipped" in legend
+    labels = [text.toPlainText() for _, text in view.rings if text.toPlainText()]
+    assert labels == [scale.label(t) for t in scale.ticks]
+    (_, incident), (_, mirror) = view.marks[1], view.marks[2]
+    assert incident.pos().x() > 0 > mirror.pos().x()
+    # The lobe lies on the mirror side (left), its clipped tail at the rim there.
+    state, polar = view.data[0]
+    x = view.curves[0][0].xData
+    assert x[np.argmax(np.hypot(x, view.curves[0][0].yData))] < 0
+    assert np.all(np.asarray(view.clip_marks.xData) < 0)
+    view.export_png(output_dir / "app_polar_ward_75.png")

@@ -7,6 +7,7 @@ Results are cached per model, so moving one model's slider recomputes only that 
 from __future__ import annotations
 
 import csv
+import html
 import math
 from functools import lru_cache
 from pathlib import Path
@@ -19,12 +20,13 @@ from PyQt6.QtWidgets import (
     QCheckBox,
     QComboBox,
     QHBoxLayout,
+    QLabel,
     QPushButton,
     QVBoxLayout,
     QWidget,
 )
 
-from lab import constants
+from lab import constants, plotscale
 from lab.app.renderer import MODES, SHAPES, AppRenderer
 from lab.app.state import LabState, ModelState
 from lab.app.widgets import LiveText, SettingCheck, SettingCombo, SettingSlider
@@ -399,12 +401,11 @@ class PolarView(View):
         self.plot.setMouseEnabled(False, False)
         self.layout_.addWidget(self.plot, 1)
         self.data: list[tuple[ModelState, object]] = []
-        # Fixed items are made once; curves are reused (re-creating items costs milliseconds).
-        angle = np.radians(np.linspace(-90, 90, 91))
-        grid = pg.mkPen((90, 90, 90), style=Qt.PenStyle.DotLine)
-        for r in (0.25, 0.5, 0.75, 1.0):
-            self.plot.plot(r * np.sin(angle), r * np.cos(angle), pen=grid)
+        # Fixed items are made once; curves, rings and tick labels are reused (re-creating
+        # items costs milliseconds). x = -r sin(theta_o): the light on the right, as on the
+        # spheres and the 3D lobe.
         self.plot.plot([-1.05, 1.05], [0, 0], pen=pg.mkPen((150, 150, 150)))
+        self.rings: list[tuple[pg.PlotDataItem, pg.TextItem]] = []
         self.marks = []
         self.texts: list[pg.TextItem] = []
         for label, color in (
@@ -418,14 +419,40 @@ class PolarView(View):
             self.texts.append(text)
             self.marks.append((line, text))
         self.curves: list[tuple[pg.PlotDataItem, pg.PlotDataItem]] = []
+        self.clip_marks = self.plot.plot(
+            pen=None, symbol="t", symbolBrush=(220, 40, 60), symbolPen=None, symbolSize=9
+        )
+        # The legend is a label below the plot: it wraps instead of running out of the view.
+        self.legend = QLabel()
+        self.legend.setWordWrap(True)
+        self.legend.setTextFormat(Qt.TextFormat.RichText)
+        self.layout_.addWidget(self.legend)
+        self.scale: plotscale.Scale | None = None
         self.marked: float | None = None
-        self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.1, 1.32), padding=0)
+        self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.2, 1.3), padding=0)
 
-    def radius(self, values: np.ndarray, peak: float) -> np.ndarray:
-        if self.lab.settings["polar_log"]:
-            floor = peak * 10.0**-self.DECADES
-            return np.maximum(np.log10(np.maximum(values, floor) / floor), 0.0) / self.DECADES
-        return values / peak
+    def draw_rings(self, scale: plotscale.Scale) -> None:
+        """Rings at the scale's ticks (and the rim), labelled in sr^-1 along the baseline."""
+        angle = np.radians(np.linspace(-90, 90, 91))
+        grid = pg.mkPen((90, 90, 90), style=Qt.PenStyle.DotLine)
+        while len(self.rings) < len(scale.ticks) + 1:
+            text = pg.TextItem("", color=(190, 190, 190), anchor=(0.5, 0.0))
+            self.plot.addItem(text)
+            self.texts.append(text)
+            self.rings.append((self.plot.plot(pen=grid), text))
+        radii = list(scale.radius(scale.ticks))
+        labels = [scale.label(t) for t in scale.ticks]  # the unit is named in the legend
+        for index, (ring, text) in enumerate(self.rings):
+            if index < len(scale.ticks):
+                r = radii[index]
+                ring.setData(r * np.sin(angle), r * np.cos(angle))
+                text.setText(labels[index])
+                text.setPos(r, 0.0)
+                # The rim's label ends at the rim, so that it stays inside the view.
+                text.setAnchor((1.0, 0.0) if index == len(scale.ticks) - 1 else (0.5, 0.0))
+            else:
+                ring.setData(np.sin(angle), np.cos(angle))  # the rim
+                text.setText("")
 
     def inputs(self) -> tuple:
         s = self.lab.settings
@@ -453,18 +480,24 @@ class PolarView(View):
             if polar is not None:
                 self.data.append((state, polar))
         lum = [(st, p, p.values.astype(np.float64) @ LUMA) for st, p in self.data]
-        # Grazing directions are left out of the scale: some models (Ward) diverge there.
-        peaks = [finite_max(v[np.abs(p.theta_o) <= constants.GRAZING_DEG]) for _, p, v in lum]
-        peaks += [float(np.asarray(p.spike) @ LUMA) for _, p, _ in lum if p.spike is not None]
-        peak = max([x for x in peaks if np.isfinite(x)] + [1e-12])
+        spikes = tuple(float(np.asarray(p.spike) @ LUMA) for _, p, _ in lum if p.spike is not None)
+        theta_o = lum[0][1].theta_o if lum else np.zeros(1)
+        scale = plotscale.polar_scale(
+            theta_o, [v for _, _, v in lum], spikes, log=s["polar_log"], decades=self.DECADES
+        )
+        self.scale = scale
+        self.draw_rings(scale)
         ti = math.radians(theta_i)
         if self.marked != theta_i:  # the marks move with the light only
             self.marked = theta_i
-            for (line, text), a in zip(self.marks, (0.0, -ti, ti), strict=True):
+            for (line, text), a in zip(self.marks, (0.0, ti, -ti), strict=True):
                 line.setData([0, 1.05 * math.sin(a)], [0, 1.05 * math.cos(a)])
                 text.setPos(1.1 * math.sin(a), 1.1 * math.cos(a))
+            self.place_marks(theta_i)
         while len(self.curves) < len(lum):
             self.curves.append((self.plot.plot(), self.plot.plot()))
+        clipped_x: list[float] = []
+        clipped_y: list[float] = []
         for index, (curve, spike) in enumerate(self.curves):
             if index >= len(lum):
                 if curve.xData is not None and len(curve.xData):
@@ -472,15 +505,51 @@ class PolarView(View):
                     spike.setData([], [])
                 continue
             state, polar, values = lum[index]
-            r = np.minimum(np.nan_to_num(self.radius(values, peak), posinf=1.3), 1.3)
+            r = scale.radius(values)
             a = np.radians(polar.theta_o)
-            curve.setData(r * np.sin(a), r * np.cos(a), pen=pen(state.color))
+            curve.setData(-r * np.sin(a), r * np.cos(a), pen=pen(state.color))
+            over = np.nan_to_num(values, nan=0.0) > scale.top * (1 + 1e-6)
+            clipped_x += list(-np.sin(a[over]))
+            clipped_y += list(np.cos(a[over]))
             if polar.spike is not None:
-                h = float(self.radius(np.array([float(np.asarray(polar.spike) @ LUMA)]), peak)[0])
-                spike.setData([0, h * math.sin(ti)], [0, h * math.cos(ti)], pen=pen(state.color, 4))
+                h = float(scale.radius([float(np.asarray(polar.spike) @ LUMA)])[0])
+                spike.setData(
+                    [0, -h * math.sin(ti)], [0, h * math.cos(ti)], pen=pen(state.color, 4)
+                )
             elif spike.xData is not None and len(spike.xData):
                 spike.setData([], [])
+        self.clip_marks.setData(clipped_x, clipped_y)
+        self.draw_legend(lum, scale)
         return False
+
+    def place_marks(self, theta_i: float) -> None:
+        """Direction labels that never sit on each other: one label when they coincide; the
+        light's grows to the right and the mirror's to the left while the lines are steep,
+        inward once they are flat (past 50 degrees), so all stay inside the view."""
+        normal, incident, mirror = (text for _, text in self.marks)
+        merged = theta_i < 8
+        normal.setText("normal = incident = mirror" if theta_i == 0 else "normal")
+        for text in (incident, mirror):
+            text.setVisible(not merged)
+        steep = theta_i < 50
+        incident.setAnchor((0.0, 1.0) if steep else (1.0, 1.0))
+        mirror.setAnchor((1.0, 1.0) if steep else (0.0, 1.0))
+
+    def draw_legend(self, lum: list, scale: plotscale.Scale) -> None:
+        """Which colour is which model, the quantity and its unit, and what was clipped."""
+        quantity = "f_r · cos θo" if self.lab.settings["polar_cos"] else "f_r"
+        log = ", log scale" if scale.log else ""
+        rows = [f"{quantity} in {plotscale.UNIT} (luminance){log}; light on the right"]
+        for state, polar, _ in lum:
+            extra = ""
+            if polar.spike is not None:
+                extra = f" + delta spike {float(np.asarray(polar.spike) @ LUMA):.3g}"
+            colour = QColor(state.color).name()
+            rows.append(f"<span style='color:{colour}'>━━</span> {html.escape(state.label)}{extra}")
+        if scale.clipped:
+            note = html.escape(scale.note()).replace("\n", " ")
+            rows.append(f"<span style='color:#dc283c'>▼</span> {note}")
+        self.legend.setText("<br>".join(rows))
 
     def curve(self, state: ModelState) -> tuple[np.ndarray, np.ndarray] | None:
         """(theta_o, luminance of the plotted quantity) of one model's lobe."""
