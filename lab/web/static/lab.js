@@ -28,7 +28,9 @@ void main() {
 export function direction(thetaDeg, phiDeg) {
   const t = (thetaDeg * Math.PI) / 180;
   const p = (phiDeg * Math.PI) / 180;
-  return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
+  // cos(90 deg) is 6e-17: snapped to 0 so theta = 90 lies on the horizon, as in Python.
+  const snap = (x) => (Math.abs(x) < 1e-12 ? 0 : x);
+  return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)].map(snap);
 }
 
 // -- shared state -------------------------------------------------------------------------
@@ -510,9 +512,11 @@ function drawPolar(canvas, values, thetaI, spike) {
   ctx.moveTo(cx, cy);
   ctx.lineTo(cx, cy - radius);
   ctx.stroke();
+  // Negative angles (toward the light) on the right: the light on the same side as on the
+  // spheres and the 3D lobe.
   const at = (angleDeg, r) => {
     const a = (angleDeg * Math.PI) / 180;
-    return [cx + r * Math.sin(a), cy - r * Math.cos(a)];
+    return [cx - r * Math.sin(a), cy - r * Math.cos(a)];
   };
   const ray = (angleDeg, r, color, dash) => {
     ctx.strokeStyle = color;
@@ -540,8 +544,8 @@ function drawPolar(canvas, values, thetaI, spike) {
   if (thetaI < 4) label("N = L = R", 0, radius + 0.7 * font, "#e0a030");
   else {
     if (thetaI >= 12) label("N", 0, radius + 0.7 * font, "#aaa");
-    label("L", -thetaI, radius + 0.8 * font, "#e0a030", thetaI < 12 ? -0.6 * font : 0);
-    label("R", thetaI, radius + 0.8 * font, "#aaa", thetaI < 12 ? 0.6 * font : 0);
+    label("L", -thetaI, radius + 0.8 * font, "#e0a030", thetaI < 12 ? 0.6 * font : 0);
+    label("R", thetaI, radius + 0.8 * font, "#aaa", thetaI < 12 ? -0.6 * font : 0);
   }
   const lum = [];
   let peak = 0;
@@ -561,17 +565,31 @@ function drawPolar(canvas, values, thetaI, spike) {
   const title = `${what}, plane of incidence${lab.lights.length > 1 ? " of light 1" : ""}`;
   ctx.fillText(ctx.measureText(title).width < w - 4 ? title : `${what}, light 1`, 2, font);
   const circle = spike && peak < 1 ? "1 (all the light)" : `${formatG(round(peak))} sr⁻¹`;
-  ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}` : "fᵣ = 0 in this plane", 2, 2.2 * font);
+  // The shared rule (lab/plotscale.py): grazing values beyond GRAZING_DEG stay out of the
+  // scale; what exceeds it is drawn at the rim, marked, and its largest value named.
+  const over = lum.map((f, i) => (peak > 0 && f > scale * (1 + 1e-6) ? i : -1)).filter((i) => i >= 0);
+  const clippedMax = over.length ? Math.max(...over.map((i) => lum[i])) : 0;
+  const clipped = over.length ? `; ▼ clipped: up to ${formatG(round(clippedMax))} sr⁻¹` : "";
+  ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}${clipped}` : "fᵣ = 0 in this plane", 2, 2.2 * font);
   if (peak > 0) {
     ctx.strokeStyle = "#4aa3ff";
     ctx.fillStyle = "#4aa3ff33";
     ctx.lineWidth = 2;
     ctx.beginPath();
     ctx.moveTo(cx, cy);
-    lum.forEach((f, i) => ctx.lineTo(...at(i - 90, radius * Math.min(f / scale, 1.15))));
+    lum.forEach((f, i) => ctx.lineTo(...at(i - 90, radius * Math.min(f / scale, 1))));
     ctx.closePath();
     ctx.fill();
     ctx.stroke();
+    ctx.fillStyle = "#dc283c";
+    for (const i of over) {
+      const [x, y] = at(i - 90, radius);
+      ctx.beginPath();
+      ctx.moveTo(x - 4, y - 6);
+      ctx.lineTo(x + 4, y - 6);
+      ctx.lineTo(x, y);
+      ctx.fill();
+    }
   }
   if (spike) {
     ctx.lineWidth = 4;
