@@ -124,6 +124,8 @@ def cmd_render(args) -> int:
     job.lights, job.ambient = lights, ambient
     views.view(args.view).plot(job)
     print(f"wrote {out}")
+    for warning in job.warnings:
+        print(f"brdf-lab: warning: {model.name}: {warning}", file=sys.stderr)
     return 0
 
 

@@ -336,7 +336,13 @@ def load_model(name_or_path: str | Path) -> Model:
     Explorer's .brdf files and measured tables.
     """
     candidate = Path(name_or_path)
-    if candidate.suffix == ".glsl" or candidate.exists():
+    if candidate.exists() and candidate.suffix != ".glsl":
+        raise ModelError(
+            f"not a model file: a model is GLSL in a .glsl file (or a BRDF Explorer .brdf, a "
+            f"MERL .binary table); rename it to {candidate.stem}.glsl if it holds a model",
+            candidate,
+        )
+    if candidate.suffix == ".glsl":
         path = candidate
     else:
         path = MODEL_DIR / f"{name_or_path}.glsl"
@@ -354,4 +360,19 @@ def load_model(name_or_path: str | Path) -> Model:
     except UnicodeDecodeError as err:
         line = raw[: err.start].count(b"\n") + 1
         raise ModelError("file is not UTF-8 text; save it as UTF-8", path, line) from None
-    return parse_model(code, path, expected_name=path.stem if path.parent == MODEL_DIR else None)
+    model = parse_model(code, path, expected_name=path.stem if path.parent == MODEL_DIR else None)
+    if not DEFINES_BRDF.search(_without_comments(code)):
+        raise ModelError(
+            "defines no function 'vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)': every "
+            "view calls it (see shaders/README.md; names are case-sensitive)",
+            path,
+        )
+    return model
+
+
+DEFINES_BRDF = re.compile(r"\bvec3\s+BRDF\s*\(")
+
+
+def _without_comments(code: str) -> str:
+    """GLSL with its // and /* */ comments removed (a BRDF in a comment defines nothing)."""
+    return re.sub(r"//[^\n]*|/\*.*?\*/", " ", code, flags=re.S)

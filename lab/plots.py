@@ -181,16 +181,21 @@ def save_render(
     exposure: float = 0.0,
     lights=None,
     ambient=(0.0, 0.0, 0.0),
-) -> None:
+) -> str:
     """Any view as a PNG: the sphere as an image (with `lights` and `ambient` when given),
-    the others as labelled plots for the light (theta, phi)."""
+    the others as labelled plots for the light (theta, phi). Returns '' or, for a sphere
+    with NaN or Inf pixels, the line that says how many and where."""
     if view == "sphere":
         image = renderer.sphere(
             model, values, (theta, phi), size=size, lights=lights, ambient=ambient
         )
         save_image(image, out, exposure)
-    else:
-        save_view(renderer, view, model, values, theta, phi, out, size=size)
+        from lab.nonfinite import sphere_report
+        from lab.render import direction
+
+        return sphere_report(image, direction(theta, phi))
+    save_view(renderer, view, model, values, theta, phi, out, size=size)
+    return ""
 
 
 def save_view(

@@ -233,3 +233,12 @@ def read_preset(path: str | Path) -> dict:
 def shipped_presets() -> list[Path]:
     """The presets that come with the lab, in lecture order (by file name)."""
     return sorted(PRESET_DIR.glob("*.toml"))
+
+
+def clamped_notes(raw: dict, checked: dict[str, Value], where: str) -> list[str]:
+    """One line per number that check_settings clamped into its range (shown to the user)."""
+    return [
+        f"{where}: setting {name} = {raw[name]!r} is outside its range; using {value!r}"
+        for name, value in checked.items()
+        if not isinstance(value, bool) and raw[name] != value
+    ]

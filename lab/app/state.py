@@ -216,8 +216,9 @@ class LabState(QObject):
         ]
         return {"settings": dict(self.settings.values), "model": models}
 
-    def from_dict(self, data: dict, base: Path | None = None, where: str = "preset") -> None:
-        """Replace the state with a preset's; raises ModelError naming what is wrong."""
+    def from_dict(self, data: dict, base: Path | None = None, where: str = "preset") -> list[str]:
+        """Replace the state with a preset's; raises ModelError naming what is wrong, and
+        returns one message per setting that was clamped into its range."""
         entries = data.get("model", [])
         if not isinstance(entries, list):
             raise ModelError("'model' must be a list of [[model]] tables", where)
@@ -226,7 +227,9 @@ class LabState(QObject):
             (*presets.entry_model(entry, number, base, where), entry)
             for number, entry in enumerate(entries, start=1)
         ]
-        settings = presets.check_settings(data.get("settings", {}), where)
+        raw = data.get("settings", {})
+        settings = presets.check_settings(raw, where)
+        notes = presets.clamped_notes(raw, settings, where)
         self.clear()
         # A preset names only some settings; the rest go back to their defaults so nothing
         # leaks from the previous preset.
@@ -244,3 +247,4 @@ class LabState(QObject):
         if self.models:
             self.select(self.models[0])
         self.changed.emit()
+        return notes

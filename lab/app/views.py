@@ -32,6 +32,7 @@ from lab.app.state import LabState, ModelState
 from lab.app.widgets import LiveText, SettingCheck, SettingCombo, SettingSlider
 from lab.glsl import ShaderCompileError
 from lab.models import ModelError
+from lab.nonfinite import sphere_report
 from lab.render import (
     LOBE_FAST_GRID,
     LOBE_GRID,
@@ -311,6 +312,12 @@ class SphereView(View):
         self.tools.addWidget(SettingSlider.of(s, "exposure"), 2)
         self.tools.addWidget(SettingSlider.of(s, "gamma"), 1)
         self.tools.addWidget(SettingCheck(s, "multiply_cos", "× N·L"))
+        # NaN or Inf pixels show as black: a banner says how many and where.
+        self.banner = QLabel()
+        self.banner.setWordWrap(True)
+        self.banner.setStyleSheet("background:#8b1a1a; color:white; padding:4px;")
+        self.banner.hide()
+        self.layout_.addWidget(self.banner)
         self.canvas = ImageRow(self.drag_light)
         self.layout_.addWidget(self.canvas, 1)
         self.floats: list[tuple[ModelState, np.ndarray]] = []
@@ -373,7 +380,15 @@ class SphereView(View):
             images.append((self.toned_image(state, image, tone), state.label, state.color))
         self.canvas.images = images
         self.canvas.update()
+        self.show_nonfinite(direction(*light))
         return coarse
+
+    def show_nonfinite(self, light: np.ndarray) -> None:
+        """The banner: each model whose sphere has NaN or Inf pixels, with share and place."""
+        reports = [(st.label, sphere_report(image, light)) for st, image in self.floats]
+        lines = [f"⚠ {label}: {text}" for label, text in reports if text]
+        self.banner.setText("\n".join(lines))
+        self.banner.setVisible(bool(lines))
 
 
 class PolarView(View):

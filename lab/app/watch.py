@@ -118,7 +118,8 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
     from lab import plots
     from lab.app.state import load_any
     from lab.gl import get_context
-    from lab.render import Renderer
+    from lab.nonfinite import sphere_report
+    from lab.render import Renderer, direction
 
     if not glfw.init():
         print("brdf-lab: cannot open a GLFW window (no display?)", file=sys.stderr)
@@ -180,7 +181,11 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
                 stop = renderer.loop_stop()
                 if stop is not None:
                     print(f"{time.strftime('%H:%M:%S')} warning: {loop_warning(model, stop[0])}")
-                print(f"{time.strftime('%H:%M:%S')} compiled {path.name}: OK")
+                # Tone mapping hides NaN and Inf as black: look at the floats.
+                floats = renderer.sphere(model, values, light, size=PANEL)
+                problem = sphere_report(floats, direction(*light))
+                status = f"compiled, but {problem}" if problem else "OK"
+                print(f"{time.strftime('%H:%M:%S')} compiled {path.name}: {status}", flush=True)
             except (ModelError, ShaderCompileError) as err:
                 print(
                     f"{time.strftime('%H:%M:%S')} {path.name} does not compile; "

@@ -106,10 +106,20 @@ class ParamControl(QWidget):
         try:
             self.state.set_value(self.param.name, value)
         except ModelError as err:
-            self.window().statusBar().showMessage(str(err), 5000) if hasattr(
-                self.window(), "statusBar"
-            ) else None
-            self.refresh()
+            self._reject(str(err))
+            return
+        if self.text is not None:
+            self.text.setToolTip("")  # an old rejection no longer applies
+
+    def _reject(self, reason: str) -> None:
+        """Keep the old value and say why, in the status bar where the eye goes."""
+        message = f"{self.state.label}: rejected — {reason}; kept {self.param.name} as it was"
+        window = self.window()
+        if hasattr(window, "statusBar"):
+            window.statusBar().showMessage(message, 15000)
+        if self.text is not None:
+            self.text.setToolTip(message)
+        self.refresh()
 
     def _from_slider(self, position: int) -> None:
         self._set(slider_value(self.param, position))
@@ -118,8 +128,7 @@ class ParamControl(QWidget):
         try:
             value = self.param.parse(self.text.text())
         except ModelError as err:
-            self.text.setToolTip(str(err))
-            self.refresh()
+            self._reject(str(err))
             return
         self._set(value)
 

@@ -77,6 +77,9 @@ class MainWindow(QMainWindow):
         # Watched model files: reload on save, keep the last good version on errors.
         self.watcher = QFileSystemWatcher(self)
         self.watcher.fileChanged.connect(self._file_changed)
+        # A file an editor deleted (to write it anew) is waited for through its folder.
+        self.watcher.directoryChanged.connect(self._folder_changed)
+        self.missing_files: set[str] = set()
         self.pending_files: set[str] = set()
         self._changed_files: set[str] = set()
         self.reload_timer = QTimer(self)
@@ -347,8 +350,24 @@ class MainWindow(QMainWindow):
         return self.lab.add(model, from_file=True)
 
     def watch(self, path: str) -> None:
-        if path not in self.watcher.files() and Path(path).exists():
-            self.watcher.addPath(path)
+        """Watch a file; while it does not exist, watch its folder for it to come back."""
+        if Path(path).exists():
+            self.missing_files.discard(path)
+            if path not in self.watcher.files():
+                self.watcher.addPath(path)
+            return
+        self.missing_files.add(path)
+        folder = str(Path(path).parent)
+        if Path(folder).is_dir() and folder not in self.watcher.directories():
+            self.watcher.addPath(folder)
+
+    def _folder_changed(self, folder: str) -> None:
+        for path in sorted(self.missing_files):
+            if str(Path(path).parent) == folder and Path(path).exists():
+                self.missing_files.discard(path)
+                self._file_changed(path)
+        if not any(str(Path(p).parent) == folder for p in self.missing_files):
+            self.watcher.removePath(folder)
 
     def _file_changed(self, path: str) -> None:
         self._changed_files.add(path)
@@ -412,7 +431,7 @@ class MainWindow(QMainWindow):
         """Replace the whole state with a preset's; raises ModelError on a bad file."""
         path = Path(path).resolve()
         data = read_preset(path)
-        self.lab.from_dict(data, base=path.parent, where=str(path))
+        clamped = self.lab.from_dict(data, base=path.parent, where=str(path))
         shown = data.get("views")  # names checked by read_preset
         if shown is not None:
             for name, dock in self.docks.items():
@@ -427,6 +446,12 @@ class MainWindow(QMainWindow):
         self.setWindowTitle(f"brdf-lab — {title}")
         notes = str(data.get("notes", ""))
         self.statusBar().showMessage(f"{title}: {notes}" if notes else title)
+        if clamped:  # bad values were clamped or ignored: say so where the eye is
+            self.errors.setPlainText("\n".join(clamped))
+            self.error_dock.show()
+            self.statusBar().showMessage(
+                clamped[0] + (" (more in Errors)" if len(clamped) > 1 else "")
+            )
         self.request()
 
     def ask_load_preset(self) -> None:

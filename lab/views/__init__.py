@@ -70,6 +70,7 @@ class PlotJob:
     exposure: float = 0.0
     lights: list | None = None  # lab.render.Light, for views that take several
     ambient: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    warnings: list[str] = field(default_factory=list)  # what the user must hear of (NaN pixels)
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,12 @@ def plot(job: PlotJob) -> None:
         ambient=job.ambient,
     )
     save_image(image, job.out, job.exposure)
+    from lab.nonfinite import sphere_report
+    from lab.render import direction
+
+    problem = sphere_report(image, direction(job.theta_i, job.phi_i))
+    if problem:
+        job.warnings.append(problem)
 
 
 VIEW = ViewSpec(
