@@ -17,6 +17,7 @@ import pyqtgraph as pg
 from PyQt6.QtCore import QPointF, QRect, Qt
 from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
 from PyQt6.QtWidgets import (
+    QBoxLayout,
     QCheckBox,
     QComboBox,
     QHBoxLayout,
@@ -43,6 +44,7 @@ from lab.render import (
 )
 
 LUMA = np.array(constants.LUMA)
+QWIDGETSIZE_MAX = (1 << 24) - 1
 BACKGROUND = (40, 40, 44)
 _BACKGROUND_BGR = np.array(BACKGROUND[::-1], np.float32) / 255.0
 
@@ -255,29 +257,42 @@ class ImageRow(QWidget):
         opaque(self)
 
     def caption_height(self) -> int:
-        return max(self.CAPTION, self.fontMetrics().height() + 4)
+        """Lines enough for every caption across its column (captions wrap, never elide,
+        never run into the next one): up to three."""
+        metrics = self.fontMetrics()
+        column = self.width() // max(len(self.images), 1)
+        widths = [metrics.horizontalAdvance(c) + 8 for _, c, _ in self.images]
+        lines = min(max([math.ceil(w / max(column, 1)) for w in widths] + [1]), 3)
+        return max(self.CAPTION, metrics.height() * lines + 4)
 
     def cell(self) -> tuple[int, int]:
         n = max(len(self.images), 1)
         side = max(min(self.width() // n, self.height() - self.caption_height()), 16)
         return n, side
 
+    def image_left(self, index: int) -> int:
+        """Each image centred in its own column, so a caption may use the column's width."""
+        n, side = self.cell()
+        column = self.width() // n
+        return index * column + (column - side) // 2
+
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor(*BACKGROUND))
         n, side = self.cell()
-        x0 = (self.width() - n * side) // 2
+        column = self.width() // n
         for index, (image, caption, color) in enumerate(self.images):
-            left = x0 + index * side
+            left = self.image_left(index)
             if image.width() == side and image.height() == side:
                 painter.drawImage(left, 0, image)
             else:
                 painter.drawImage(QRect(left, 0, side, side), image)
             painter.setPen(QColor(color))
-            caption = painter.fontMetrics().elidedText(caption, Qt.TextElideMode.ElideMiddle, side)
             painter.drawText(
-                QRect(left, side, side, self.caption_height()),
-                Qt.AlignmentFlag.AlignCenter,
+                QRect(index * column + 4, side, column - 8, self.caption_height()),
+                Qt.AlignmentFlag.AlignHCenter
+                | Qt.AlignmentFlag.AlignTop
+                | Qt.TextFlag.TextWordWrap,
                 caption,
             )
         painter.end()
@@ -286,9 +301,9 @@ class ImageRow(QWidget):
         if self.on_drag is None or not self.images:
             return
         n, side = self.cell()
-        x0 = (self.width() - n * side) // 2
-        px, py = event.position().x() - x0, event.position().y()
-        px = px % side
+        x = event.position().x()
+        index = min(max(int(x // max(self.width() // n, 1)), 0), n - 1)
+        px, py = x - self.image_left(index), event.position().y()
         self.on_drag(2.0 * px / side - 1.0, 1.0 - 2.0 * py / side)
 
     def mousePressEvent(self, event) -> None:
@@ -414,7 +429,10 @@ class PolarView(View):
         self.plot.hideAxis("left")
         self.plot.hideAxis("bottom")
         self.plot.setMouseEnabled(False, False)
-        self.layout_.addWidget(self.plot, 1)
+        # Plot and legend: side by side in a wide view, stacked in a tall one (resizeEvent).
+        self.body = QBoxLayout(QBoxLayout.Direction.TopToBottom)
+        self.body.addWidget(self.plot, 1)
+        self.layout_.addLayout(self.body, 1)
         self.data: list[tuple[ModelState, object]] = []
         # Fixed items are made once; curves, rings and tick labels are reused (re-creating
         # items costs milliseconds). x = -r sin(theta_o): the light on the right, as on the
@@ -441,10 +459,19 @@ class PolarView(View):
         self.legend = QLabel()
         self.legend.setWordWrap(True)
         self.legend.setTextFormat(Qt.TextFormat.RichText)
-        self.layout_.addWidget(self.legend)
+        self.legend.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter)
+        self.body.addWidget(self.legend)
         self.scale: plotscale.Scale | None = None
         self.marked: float | None = None
         self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.2, 1.3), padding=0)
+
+    def resizeEvent(self, event) -> None:
+        wide = self.width() > 1.6 * self.height()
+        self.body.setDirection(
+            QBoxLayout.Direction.LeftToRight if wide else QBoxLayout.Direction.TopToBottom
+        )
+        self.legend.setMaximumWidth(int(0.4 * self.width()) if wide else QWIDGETSIZE_MAX)
+        super().resizeEvent(event)
 
     def draw_rings(self, scale: plotscale.Scale) -> None:
         """Rings at the scale's ticks (and the rim), labelled in sr^-1 along the baseline."""
@@ -457,6 +484,20 @@ class PolarView(View):
             self.rings.append((self.plot.plot(pen=grid), text))
         radii = list(scale.radius(scale.ticks))
         labels = [scale.label(t) for t in scale.ticks]  # the unit is named in the legend
+        # Labels that would run into the next one (large fonts, a small view) are left out,
+        # from the centre outward; the rim's always stays.
+        unit_px = 1.0 / max(self.plot.getViewBox().viewPixelSize()[0], 1e-9)
+        metrics = QFontMetrics(self.rings[0][1].textItem.font()) if self.rings else None
+        right = math.inf
+        for index in range(len(labels) - 1, -1, -1):
+            if metrics is None:
+                break
+            width = metrics.horizontalAdvance(labels[index]) + 6
+            centre = radii[index] * unit_px - (width / 2 if index < len(labels) - 1 else width)
+            if centre + width > right:
+                labels[index] = ""
+            else:
+                right = centre
         for index, (ring, text) in enumerate(self.rings):
             if index < len(scale.ticks):
                 r = radii[index]
@@ -477,6 +518,9 @@ class PolarView(View):
             s["phi_i"],
             s["polar_cos"],
             s["polar_log"],
+            self.plot.width(),  # which ring labels fit
+            self.plot.height(),
+            self.font().pointSizeF(),
         )
 
     def draw(self, fast: bool) -> bool:
@@ -969,7 +1013,7 @@ class AlbedoView(View):
         self.plot = pg.PlotWidget()
         opaque(self.plot.viewport())
         self.plot.setLabel("bottom", "θi (deg)")
-        self.plot.setLabel("left", "directional albedo")
+        self.plot.setLabel("left", "albedo")
         self.plot.getAxis("left").setWidth(52)  # fixed: new tick labels never relayout
         self.plot.setMouseEnabled(False, False)
         self.plot.hideButtons()

@@ -12,6 +12,7 @@ from PyQt6.QtWidgets import (
     QColorDialog,
     QComboBox,
     QFormLayout,
+    QGridLayout,
     QHBoxLayout,
     QLabel,
     QLineEdit,
@@ -156,7 +157,11 @@ class ParamControl(QWidget):
             style = f"background: {color_hex(value)}"
             if self.swatch.styleSheet() != style:
                 self.swatch.setStyleSheet(style)
-            self._show_text(", ".join(format_number(c) for c in value))
+            # A grey is one number (as typed): the box stays short enough for presenter fonts.
+            grey = value[0] == value[1] == value[2]
+            self._show_text(
+                format_number(value[0]) if grey else ", ".join(map(format_number, value))
+            )
         elif self.param.kind == "bool":
             self.check.setChecked(bool(value))
         else:
@@ -270,7 +275,7 @@ class ModelList(QWidget):
         self.lab = lab
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        row = QHBoxLayout()
+        self.top = QGridLayout()
         self.library = QComboBox()
         self.library.addItems(model_names())
         add = QPushButton("Add")
@@ -281,18 +286,20 @@ class ModelList(QWidget):
             "or a MERL .binary table (the measured model)"
         )
         opener.clicked.connect(self.open_file.emit)
-        row.addWidget(self.library, 1)
-        row.addWidget(add)
-        row.addWidget(opener)
-        layout.addLayout(row)
+        self.top.addWidget(self.library, 0, 0)
+        self.top.addWidget(add, 0, 1)
+        self.top.addWidget(opener, 0, 2)
+        self.top.setColumnStretch(0, 1)
+        self.top_widgets = (self.library, add, opener)
+        layout.addLayout(self.top)
         self.list = QListWidget()
         self.list.setToolTip("tick: visible in the views; select: edit its parameters")
         self.list.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
         self.list.currentRowChanged.connect(self._selected)
         self.list.itemChanged.connect(self._checked)
         layout.addWidget(self.list)
-        buttons = QHBoxLayout()
-        buttons.setSpacing(2)
+        self.buttons = QGridLayout()
+        self.buttons.setSpacing(2)
         for text, slot, tip in (
             ("Duplicate", lambda: self._on_current(self.lab.duplicate), "a copy to vary"),
             ("Remove", lambda: self._on_current(self.lab.remove), "remove the model"),
@@ -304,12 +311,29 @@ class ModelList(QWidget):
             button.setToolTip(tip)
             button.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
             button.clicked.connect(slot)
-            buttons.addWidget(button)
-        layout.addLayout(buttons)
+            self.buttons.addWidget(button, 0, self.buttons.count())
+        layout.addLayout(self.buttons)
         self.shown: list[tuple] = []
         lab.models_changed.connect(self.rebuild)
         lab.changed.connect(self._update_labels)
         lab.selection_changed.connect(self._update_labels)
+
+    def arrange(self, columns: int) -> None:
+        """The Duplicate/Remove/Solo/Colour buttons in `columns` columns (2 when presenting,
+        where four large labels would not fit one row of the narrow controls column)."""
+        items = [self.buttons.itemAt(i).widget() for i in range(self.buttons.count())]
+        for index, button in enumerate(items):
+            self.buttons.removeWidget(button)
+            self.buttons.addWidget(button, index // columns, index % columns)
+        # The library menu gets a row of its own too, so that no model name is cut short.
+        places = (
+            [(0, 0, 1), (0, 1, 1), (0, 2, 1)] if columns >= 4 else [(0, 0, 2), (1, 0, 1), (1, 1, 1)]
+        )
+        for widget in self.top_widgets:
+            self.top.removeWidget(widget)
+        for widget, (row, column, span) in zip(self.top_widgets, places, strict=True):
+            self.top.addWidget(widget, row, column, 1, span)
+        self.top.setColumnStretch(0, 1 if columns >= 4 else 0)
 
     def add_selected(self) -> None:
         from lab.models import load_model

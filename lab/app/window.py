@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import time
 from pathlib import Path
 
@@ -13,6 +14,7 @@ from PyQt6.QtWidgets import (
     QDockWidget,
     QFileDialog,
     QFrame,
+    QLabel,
     QMainWindow,
     QPlainTextEdit,
     QScrollArea,
@@ -116,7 +118,13 @@ class MainWindow(QMainWindow):
         scroll.setWidget(self.params)
         layout.addWidget(scroll, 1)
         scroll.setFrameShape(QFrame.Shape.NoFrame)
-        dock = QDockWidget("Models, light and parameters", self)
+        # A preset's notes, wrapped: the status bar would cut a long one short.
+        self.notes = QLabel()
+        self.notes.setWordWrap(True)
+        self.notes.setStyleSheet("QLabel { background: #ffffe0; color: black; padding: 3px; }")
+        self.notes.hide()
+        layout.addWidget(self.notes)
+        dock = QDockWidget("Models and light", self)
         dock.setObjectName("controls")
         dock.setWidget(panel)
         dock.setMinimumWidth(300)
@@ -173,11 +181,21 @@ class MainWindow(QMainWindow):
             [left, width - left],
             Qt.Orientation.Horizontal,
         )
-        self.resizeDocks(
-            [self.docks["sphere"], self.docks["polar"], self.docks["slice"]],
-            [int(0.28 * height), int(0.32 * height), int(0.4 * height)],
-            Qt.Orientation.Vertical,
-        )
+        # One dock per shown row (a preset may hide a row's first dock, or the whole row).
+        rows = [("sphere",), ("polar", "lobe3d", "sh"), ("slice", "albedo", "object")]
+        shares = (0.28, 0.42, 0.3)
+        picked = [
+            (next(self.docks[n] for n in row if not self.docks[n].isHidden()), share)
+            for row, share in zip(rows, shares, strict=True)
+            if any(not self.docks[n].isHidden() for n in row)
+        ]
+        if picked:
+            total = sum(share for _, share in picked)
+            self.resizeDocks(
+                [dock for dock, _ in picked],
+                [int(share / total * height) for _, share in picked],
+                Qt.Orientation.Vertical,
+            )
         right = width - left
         self.resizeDocks(
             [self.docks["polar"], self.docks["lobe3d"], self.docks["sh"]],
@@ -436,6 +454,7 @@ class MainWindow(QMainWindow):
         if shown is not None:
             for name, dock in self.docks.items():
                 dock.setVisible(name in shown)
+            QTimer.singleShot(0, self.fit_docks)  # the shown views share the room again
         for state in self.lab.models:
             if state.from_file:
                 self.watch(str(Path(state.model.path).resolve()))
@@ -445,7 +464,9 @@ class MainWindow(QMainWindow):
         title = str(data.get("title", path.stem))
         self.setWindowTitle(f"brdf-lab — {title}")
         notes = str(data.get("notes", ""))
-        self.statusBar().showMessage(f"{title}: {notes}" if notes else title)
+        self.statusBar().showMessage(title)
+        self.notes.setText(f"<b>{html.escape(title)}</b>: {html.escape(notes)}" if notes else "")
+        self.notes.setVisible(bool(notes))
         if clamped:  # bad values were clamped or ignored: say so where the eye is
             self.errors.setPlainText("\n".join(clamped))
             self.error_dock.show()
@@ -496,9 +517,15 @@ class MainWindow(QMainWindow):
         title.setBold(self.presenter)
         for dock in self.findChildren(QDockWidget):
             dock.setFont(title)
+        # Presenter fonts make the row of plots wider than a 1024-pixel projector: the
+        # spherical harmonics share the 3D lobe's place as a tab there.
+        self.model_list.arrange(2 if self.presenter else 4)
         if self.presenter:
+            self.tabifyDockWidget(self.docks["lobe3d"], self.docks["sh"])
+            self.docks["lobe3d"].raise_()
             self.showFullScreen()
         else:
+            self.splitDockWidget(self.docks["lobe3d"], self.docks["sh"], Qt.Orientation.Horizontal)
             self.showNormal()
         self.controls_dock.setMaximumWidth(self.controls_cap())
         # The new fonts and the new window size want the docks laid out again.
