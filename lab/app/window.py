@@ -8,7 +8,7 @@ from pathlib import Path
 
 import moderngl
 from PyQt6.QtCore import QFileSystemWatcher, Qt, QTimer, pyqtSignal
-from PyQt6.QtGui import QAction, QFont, QKeySequence
+from PyQt6.QtGui import QAction, QFont, QFontMetrics, QKeySequence
 from PyQt6.QtWidgets import (
     QApplication,
     QDockWidget,
@@ -38,6 +38,17 @@ NOT_YET = "it was not added: it is added when a saved version compiles"
 DOCK_AREAS = {
     "right": Qt.DockWidgetArea.RightDockWidgetArea,
     "bottom": Qt.DockWidgetArea.BottomDockWidgetArea,
+}
+
+
+# What a narrow dock calls its view when the whole title does not fit.
+SHORT_TITLES = {
+    "sphere": "Spheres",
+    "polar": "Polar",
+    "slice": "Slice θh θd",
+    "albedo": "Albedo",
+    "object": "Object",
+    "sh": "SH",
 }
 
 
@@ -98,6 +109,24 @@ class MainWindow(QMainWindow):
             self._fitted = True
             QTimer.singleShot(0, self.fit_docks)
 
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        QTimer.singleShot(0, self.fit_titles)
+
+    def fit_titles(self) -> None:
+        """A dock too narrow for its view's title (presenter fonts) shows a short one."""
+        for spec in views.all_views():
+            dock = self.docks.get(spec.name)
+            if dock is None:
+                continue
+            font = QFont(dock.font())
+            room = dock.width() - 50  # the float and close buttons
+            title = spec.title
+            if QFontMetrics(font).horizontalAdvance(title) > room:
+                title = SHORT_TITLES.get(spec.name, title)
+            if dock.windowTitle() != title:
+                dock.setWindowTitle(title)
+
     # -- layout -------------------------------------------------------------------------
     def _build_controls(self) -> None:
         panel = QWidget()
@@ -153,6 +182,7 @@ class MainWindow(QMainWindow):
             self.views.append(view)
             self.docks[spec.name] = dock
             rows.setdefault(spec.dock, []).append(dock)
+        self.dock_rows = [row for _, row in sorted(rows.items())]
         for area in DOCK_AREAS:
             above = None
             for _, row in sorted((key[1], docks) for key, docks in rows.items() if key[0] == area):
@@ -517,15 +547,20 @@ class MainWindow(QMainWindow):
         title.setBold(self.presenter)
         for dock in self.findChildren(QDockWidget):
             dock.setFont(title)
-        # Presenter fonts make the row of plots wider than a 1024-pixel projector: the
-        # spherical harmonics share the 3D lobe's place as a tab there.
+        # Presenter fonts make a row of three views wider than a 1024-pixel projector: the
+        # third and later views of a row become tabs behind the second.
         self.model_list.arrange(2 if self.presenter else 4)
+        for row in self.dock_rows:  # at most two views side by side; the others as tabs
+            for left, extra in zip(row[1:], row[2:], strict=False):
+                if self.presenter:
+                    self.tabifyDockWidget(row[1], extra)
+                else:
+                    self.splitDockWidget(left, extra, Qt.Orientation.Horizontal)
+            if self.presenter and len(row) > 2:
+                row[1].raise_()
         if self.presenter:
-            self.tabifyDockWidget(self.docks["lobe3d"], self.docks["sh"])
-            self.docks["lobe3d"].raise_()
             self.showFullScreen()
         else:
-            self.splitDockWidget(self.docks["lobe3d"], self.docks["sh"], Qt.Orientation.Horizontal)
             self.showNormal()
         self.controls_dock.setMaximumWidth(self.controls_cap())
         # The new fonts and the new window size want the docks laid out again.

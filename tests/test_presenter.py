@@ -1,0 +1,73 @@
+"""Presenter mode on a projector's screen: 1024x768 and 1280x800, every preset, nothing cut.
+
+Without a window manager (Xvfb) full screen is not applied, so the window is given the
+screen's size; it must accept it (its minimum fits) and lay every text out in full.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import pytest
+
+pytest.importorskip("pytestqt")
+if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+    pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
+
+from PyQt6.QtWidgets import QAbstractButton, QComboBox, QLabel, QWidget  # noqa: E402
+from qtapp import settle  # noqa: E402
+
+from lab.app.state import shipped_presets  # noqa: E402
+from lab.models import load_model  # noqa: E402
+
+
+def cut_texts(window) -> list[str]:
+    """Visible labels, buttons and menus whose one-line text is wider than their room."""
+    cut = []
+    for widget in window.findChildren(QWidget):
+        if not widget.isVisible() or widget.visibleRegion().isEmpty():
+            continue
+        if isinstance(widget, QLabel) and (widget.wordWrap() or "<" in widget.text()):
+            continue
+        if isinstance(widget, (QLabel, QAbstractButton)):
+            text, room = widget.text().replace("&", ""), widget.contentsRect().width()
+            if isinstance(widget, QAbstractButton) and not isinstance(widget, QLabel):
+                room -= 6  # the button's own margins
+        elif isinstance(widget, QComboBox):
+            text, room = widget.currentText(), widget.contentsRect().width() - 24
+        else:
+            continue
+        for line in text.splitlines():
+            need = widget.fontMetrics().horizontalAdvance(line)
+            if line and need > room + 1:
+                cut.append(f"{type(widget).__name__} {line!r}: {need} px > {room} px")
+    for dock in window.docks.values():
+        if dock.isVisible() and not dock.visibleRegion().isEmpty():
+            need = dock.fontMetrics().horizontalAdvance(dock.windowTitle())
+            if need > dock.width() - 50:  # the float and close buttons
+                cut.append(f"dock title {dock.windowTitle()!r}")
+    return cut
+
+
+@pytest.mark.parametrize("size", [(1024, 768), (1280, 800)], ids=["1024x768", "1280x800"])
+def test_presenter_fits_the_projector(qtbot, window, output_dir, size):
+    window.lab.add(load_model("phong"))
+    window.lab.add(load_model("cook_torrance"))
+    window.toggle_presenter()
+    try:
+        qtbot.wait(100)
+        for preset in [None, *shipped_presets()]:
+            if preset is not None:
+                window.load_preset(preset)
+            window.setGeometry(0, 0, *size)
+            qtbot.wait(60)
+            settle(qtbot, window)
+            name = preset.stem[:2] if preset else "all"
+            window.grab().save(str(output_dir / f"presenter_{size[0]}x{size[1]}_{name}.png"))
+            assert (window.width(), window.height()) == size, f"{name}: needs {window.size()}"
+            assert cut_texts(window) == [], name
+            # The views get the room: the controls column stays a narrow one.
+            assert window.controls_dock.width() <= 0.34 * size[0], name
+    finally:
+        window.toggle_presenter()
