@@ -5,7 +5,7 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
-from lab import plots
+from lab import diagrams, plots
 from lab.models import load_model, model_names
 from lab.render import Renderer
 
@@ -58,11 +58,18 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
             ("cook_torrance", {"kd": (0.0,) * 3, "m": 0.35, "f0": (0.04,) * 3}, "tab:red"),
         )
     ]
+    # F = 1: the microfacet lobe without Fresnel is symmetric about the mirror direction.
+    flat = {"kd": (0.0,) * 3, "m": 0.35, "fresnel": "none"}
+    flat_lobe = renderer.polar("cook_torrance", flat, theta_i, cos_weighted=True)
+    lobes.append((flat_lobe, "cook_torrance, F = 1", "tab:grey"))
     plots.draw_polar(ax, lobes, theta_i, "f_r cos θo (each scaled to its peak)", normalize=True)
     path = outdir / "off_specular_peak.png"
     fig.tight_layout()
     fig.savefig(path, bbox_inches="tight")
     paths.append(path)
+    # Measuring, and the microfacets' shadowing and masking.
+    paths.append(diagrams.gonioreflectometer(renderer, outdir / "gonioreflectometer.png"))
+    paths.append(diagrams.vgroove(outdir / "vgroove.png"))
     # Sun and moon: lit from the eye, Lambert darkens to the rim, Lommel-Seeliger stays flat.
     # The moon is exposed 3 stops up so both discs have the same brightness at the centre.
     for name, exposure in (("lambert", 0.0), ("lommel_seeliger", 3.0)):

@@ -17,9 +17,9 @@ import pyqtgraph as pg
 from PyQt6.QtCore import Qt
 from PyQt6.QtWidgets import QLabel, QSpinBox
 
-from lab import constants
+from lab import plotscale
 from lab.app.state import ModelState, Settings
-from lab.app.views import LUMA, View, finite_max, look_key, pen, state_key
+from lab.app.views import LUMA, View, look_key, pen, state_key
 from lab.app.widgets import LiveText
 from lab.glsl import ShaderCompileError
 from lab.measured import sh
@@ -103,8 +103,7 @@ def sh_data(
     polar = renderer.polar(state.model, state.values, theta_i, phi_i, cos_weighted=True)
     theta_o, basis = plane_basis(float(phi_i))
     plane = np.nan_to_num(polar.values.astype(np.float64) @ LUMA, nan=0.0, posinf=0.0, neginf=0.0)
-    finite = plane[np.abs(theta_o) <= constants.GRAZING_DEG]
-    peak = float(finite.max()) if finite.size else 0.0
+    peak = plotscale.peak_value(theta_o, plane)  # the scale rule of every plot
     return SHData(coefficients[:, 0], errors, theta_o, plane, basis, peak)
 
 
@@ -127,7 +126,8 @@ class SHView(View):
         self.layout_.addWidget(self.graphics, 1)
         self.lobe_plot = self.graphics.addPlot()
         self.lobe_plot.setLabel("bottom", "θo (deg)")
-        self.lobe_plot.setLabel("left", "÷ peak")
+        self.lobe_plot.setTitle("f_r cos θo in the plane of incidence")
+        self.lobe_plot.setLabel("left", "relative to its peak")
         self.lobe_plot.getAxis("left").setTicks([[(0, "0"), (0.5, ".5"), (1, "1")]])
         self.lobe_plot.getAxis("bottom").setTicks([[(t, str(t)) for t in (-90, -45, 0, 45, 90)]])
         self.lobe_plot.setMouseEnabled(False, False)
@@ -138,10 +138,13 @@ class SHView(View):
             angle=90, pen=pg.mkPen((120, 200, 255), style=Qt.PenStyle.DashLine)
         )
         self.lobe_plot.addItem(self.mirror)
-        self.lobe_curve = self.lobe_plot.plot()
-        self.series_curve = self.lobe_plot.plot()
+        # Which curve is which, on the plot itself.
+        self.lobe_plot.addLegend(offset=(4, 4), labelTextSize="9pt")
+        self.lobe_curve = self.lobe_plot.plot(name="original (GLSL)")
+        self.series_curve = self.lobe_plot.plot(name="SH series, order L")
         self.error_plot = self.graphics.addPlot()
         self.error_plot.setLabel("bottom", "order L")
+        self.error_plot.setTitle("relative L2 error")
         self.error_plot.setLabel("left", "error")
         self.error_plot.getAxis("bottom").setTicks(
             [[(k, str(k)) for k in range(0, MAX_ORDER + 1, 8)]]
@@ -220,7 +223,7 @@ class SHView(View):
                 state,
                 theta_o,
                 plane,
-                max(finite_max(plane[np.abs(theta_o) <= constants.GRAZING_DEG]), 1e-9),
+                max(plotscale.peak_value(theta_o, plane), 1e-9),
             )
             self.series_curve.setData([], [])
             self.shown = ()
@@ -250,6 +253,11 @@ class SHView(View):
         if low != self.low:
             self.low = low
             self.error_plot.setRange(xRange=(-0.5, MAX_ORDER + 0.5), yRange=(low, 0.2), padding=0)
+            # A few decades labelled, never one per power of ten piled on top of each other.
+            step = max(1, math.ceil(-low / 3))
+            self.error_plot.getAxis("left").setTicks(
+                [[(k, f"1e{k}" if k else "1") for k in range(0, low - 1, -step)], []]
+            )
         self.error_curve.setData(np.arange(MAX_ORDER + 1), errors, pen=pen(state.color))
         self.order_mark.setValue(order)
         self.info.setText(

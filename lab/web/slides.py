@@ -80,6 +80,9 @@ def build(outdir: Path, figures: bool = True) -> Path:
         from lab.figures import lecture_figures
 
         lecture_figures(outdir / "figures")
+        from lab.app.steps import render_steps  # the object view's four SVBRDF steps
+
+        render_steps(outdir / "figures")
     export(outdir / "lab")  # the live demos' iframes load the web lab from here
     _run(["node", str(workdir() / "build.mjs"), str(outdir.resolve())], "building the deck")
     return outdir / "index.html"
