@@ -403,3 +403,23 @@ def test_no_loop_note_unless_the_loop_guard_stopped_one(graded):
     for key in [k for k in graded if k[1] == "06_microfacet_distributions"]:
         for result in graded[key].checks():
             assert "loop" not in result.message, result.message
+
+
+def test_stored_variants_fit_the_references():
+    """diagnosis.npz was made with the same checks as the references (else re-make both)."""
+    from lab.grading.checks import VALUES_FILE, read_png
+
+    for exercise in EXERCISES.values():
+        hints = mistakes.read_hints(exercise)
+        with np.load(exercise.references / VALUES_FILE) as refs:
+            shapes = {k: refs[k].shape for k in refs.files}
+        for check in exercise.checks:
+            if check.kind == "sphere":
+                shapes[check.name] = read_png(exercise.references / f"{check.name}.png").shape
+        with np.load(exercise.references / mistakes.VALUES) as data:
+            for key in data.files:
+                check, variant = key.split("|")
+                assert data[key].shape == shapes[check], (exercise.name, key)
+                assert variant.startswith("term.") or variant in hints, (exercise.name, key)
+        if exercise.name >= "02":
+            assert sum(k.startswith("mistake.") for k in hints) >= 5, exercise.name
