@@ -382,3 +382,17 @@ def test_desktop_lab_warns_about_a_loop_the_guard_stopped(qtbot, window, tmp_pat
     path.write_text(head + brace + "\n    float s = 1.0; while (s > 0.0) { s += 1.0; }" + rest)
     assert window.open_file(path) is not None
     assert f"looping.glsl:{line}: the loop at line {line} did not end" in window.error_text()
+
+
+def test_hidden_mode_names_seed_values_and_lights_and_reproduces(tmp_path):
+    """The output of a hidden-mode run names what it drew; the same --seed draws it again."""
+    path = _write(tmp_path, "wrong", PHONG, phong())  # no horizon test: fails some checks
+    command = [sys.executable, "-c", MAIN, "grade", str(PHONG.folder), "--submission", str(path)]
+    runs = [
+        subprocess.run([*command, "--seed", "5"], capture_output=True, text=True, cwd=ROOT)
+        for _ in range(2)
+    ]
+    assert runs[0].stdout == runs[1].stdout
+    text = runs[0].stdout
+    assert "hidden mode: seed 5; parameters kd=(" in text and "ke=" in text
+    assert "sphere lights θ = " in text and "--seed 5)" in text

@@ -22,6 +22,7 @@ from lab.models import SHADER_DIR
 
 K = 12  # tokens per k-gram: shorter matches are common idioms (max(dot(N, L), 0.0))
 WINDOW = 4  # winnowing window: a match of K + WINDOW - 1 tokens is always seen
+HTML_PAIRS = 300  # pairs shown side by side (the CSV has all)
 THRESHOLD = 0.6  # share of the smaller file's fingerprints that the report lists
 TOKEN = re.compile(r"[A-Za-z_]\w*|\d+\.?\d*(?:[eE][-+]?\d+)?[fFuU]?|\.\d+(?:[eE][-+]?\d+)?|\S")
 COMMENTS = re.compile(r"//[^\n]*|/\*.*?(?:\*/|\Z)", re.S)
@@ -191,7 +192,12 @@ def write_html(matches: list[Match], path: Path) -> None:
     ]
     if not matches:
         parts.append("<p>No pair reaches the threshold.</p>")
-    for m in matches:
+    if len(matches) > HTML_PAIRS:
+        parts.append(
+            f"<p>The {HTML_PAIRS} most similar of {len(matches)} pairs are shown; "
+            "similarity.csv lists them all.</p>"
+        )
+    for m in matches[:HTML_PAIRS]:
         common = m.a.prints.keys() & m.b.prints.keys()
         same = f"; identical wrong values in {html.escape(m.behaviour)}" if m.behaviour else ""
         parts.append(
