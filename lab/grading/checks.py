@@ -9,6 +9,7 @@ from __future__ import annotations
 import io
 import math
 from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -403,27 +404,31 @@ class Grader:
             for _, check in todo:
                 yield failed(check, str(err), status="error")
             return
-        warnings = portability_warnings(model, label_of(submission))
+        # The GLSL ES compile runs beside the checks; its warnings go with the last one.
+        executor = ThreadPoolExecutor(max_workers=1)
+        portable = executor.submit(portability_warnings, model, label_of(submission))
+        executor.shutdown(wait=False)
         for index, check in todo:
             try:
                 if seed is not None:
                     check = hidden_variant(check, self.solution_model(exercise), seed, index)
                 expected = self.expected(exercise, check, live=seed is not None)
             except (OSError, KeyError, ModelError, SubmissionError) as err:
-                yield failed(
+                result = failed(
                     check, f"cannot get the reference: {err} (ask your instructor)", status="error"
                 )
-                continue
-            result = self.grade(exercise, check, model, code, expected, live=seed is not None)
-            if seed is not None:
-                result.setting = {
-                    "seed": seed,
-                    "params": check.params,
-                    "theta_i": check.theta_i,
-                    "lights": [(lt.theta, lt.phi) for lt in check.lights],
-                    "probe_seed": check.seed,
-                }
-            result.warnings, warnings = warnings, []  # said once, with the first check
+            else:
+                result = self.grade(exercise, check, model, code, expected, live=seed is not None)
+                if seed is not None:
+                    result.setting = {
+                        "seed": seed,
+                        "params": check.params,
+                        "theta_i": check.theta_i,
+                        "lights": [(lt.theta, lt.phi) for lt in check.lights],
+                        "probe_seed": check.seed,
+                    }
+            if index == todo[-1][0]:
+                result.warnings = portable.result()
             yield result
 
     def grade(
