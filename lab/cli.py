@@ -27,6 +27,7 @@ FEATURE_CLIS = [
     "lab.grading.course",
     "lab.web.cli",
     "lab.measured.cli",
+    "lab.ibl.cli",
 ]
 MAX_SIZE = 4096  # pixels per side: a 4096² float image is 256 MiB already
 
@@ -122,6 +123,8 @@ def cmd_render(args) -> int:
         Renderer(), model, values, lights[0].theta, lights[0].phi, out, args.size, args.exposure
     )
     job.lights, job.ambient = lights, ambient
+    job.ibl = {"env": args.env, "strategy": args.strategy, "samples": args.samples}
+    job.ibl["rotation"] = args.rotate
     views.view(args.view).plot(job)
     print(f"wrote {out}")
     for warning in job.warnings:
@@ -267,6 +270,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--exposure", type=float, default=0.0, help="exposure in stops (sphere)")
     p.add_argument("--table", metavar="FILE.binary", help="the MERL table of the 'measured' model")
+    p.add_argument(
+        "--env",
+        default="sky",
+        metavar="NAME|FILE",
+        help="ibl view: sky, furnace, studio, grey_room or an equirectangular .hdr/.exr file",
+    )
+    p.add_argument("--strategy", default="mis_power", help="ibl view: how directions are drawn")
+    p.add_argument("--samples", type=int, default=256, help="ibl view: samples per pixel")
+    p.add_argument("--rotate", type=float, default=0.0, help="ibl view: environment turn (deg)")
     p.add_argument("-o", "--output", required=True, metavar="OUT.png")
     p.set_defaults(func=cmd_render)
 

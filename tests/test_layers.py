@@ -39,6 +39,12 @@ LAYERS = {  # module -> layer; a feature package's modules default to the top la
     "lab.diagrams": 2,
     "lab.bench": 2,
     "lab.measured.tabulate": 2,
+    "lab.ibl": 2,
+    "lab.ibl.environments": 2,
+    "lab.ibl.integrator": 2,
+    "lab.ibl.furnace": 2,
+    "lab.ibl.chisquare": 2,
+    "lab.ibl.bench": 2,
     "lab.cli": 3,
 }
 TOP = 4

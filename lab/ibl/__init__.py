@@ -1,0 +1,1 @@
+"""Image-based lighting: the reflection equation under an environment, by Monte Carlo on the GPU."""

@@ -1,0 +1,25 @@
+"""Command line of the IBL feature: `brdf-lab ibl-bench` (render --view ibl is in lab.cli)."""
+
+from __future__ import annotations
+
+
+def cmd_ibl_bench(args) -> int:
+    from lab.ibl import bench
+
+    bench.run(size=args.size, reference_samples=args.reference, budget_s=args.budget)
+    return 0
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "ibl-bench",
+        help="IBL: samples per second (512x512 sphere) and time to 1%% RMS per strategy",
+    )
+    p.add_argument("--size", type=int, default=64, help="sphere size for the convergence runs")
+    p.add_argument(
+        "--reference", type=int, default=8192, help="samples/pixel of the converged reference"
+    )
+    p.add_argument(
+        "--budget", type=float, default=20.0, help="seconds per strategy before extrapolating"
+    )
+    p.set_defaults(func=cmd_ibl_bench)

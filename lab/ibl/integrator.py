@@ -1,0 +1,373 @@
+"""Monte Carlo integration of the reflection equation on the GPU, accumulated progressively.
+
+`IBLRenderer` draws the lit sphere of shaders/views/ibl.glsl under an environment map with
+one of STRATEGIES. A model's BRDF sampler is the file shaders/samplers/<model>.glsl (it
+defines HAS_SAMPLER, SAMPLE_BRDF and PDF_BRDF); models without one fall back to cosine
+sampling for "brdf" and to cosine + environment for MIS, and `fallback` says so.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from dataclasses import dataclass, field
+
+import moderngl
+import numpy as np
+
+from lab import glsl
+from lab.constants import LUMA
+from lab.ibl import environments
+from lab.models import SHADER_DIR, Model, Value
+from lab.render import Renderer, as_model
+
+STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power")
+STRATEGY_TITLES = {
+    "uniform": "uniform hemisphere",
+    "cosine": "cosine-weighted",
+    "environment": "environment (CDF over the map)",
+    "brdf": "BRDF importance",
+    "mis_balance": "MIS, balance heuristic",
+    "mis_power": "MIS, power heuristic",
+}
+SAMPLER_DIR = SHADER_DIR / "samplers"
+SAMPLING_TERMS = SHADER_DIR / "terms" / "sampling.glsl"
+IBL_VIEWS = ("ibl", "ibl_sample", "ibl_pdf")
+NO_SAMPLER = """const bool HAS_SAMPLER = false;
+vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
+float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }"""
+ENV_UNIT = 8  # texture units 8..11 hold the environment (models' own data binds lower units)
+
+
+def sampler_path(model: Model):
+    """The model's BRDF sampler file, or None (BRDF Explorer files and models without one)."""
+    path = SAMPLER_DIR / f"{model.name}.glsl"
+    own = getattr(model, "sampler_path", None)  # an exercise's model brings its own
+    if own is not None:
+        return own
+    if hasattr(model, "shader_line") or not path.is_file():
+        return None
+    return path if model.path.parent.resolve() == (SHADER_DIR / "brdfs").resolve() else None
+
+
+def sampler_key(model: Model) -> str:
+    """A comment line naming the sampler's text, so the program cache tells samplers apart."""
+    path = sampler_path(model)
+    text = path.read_text(encoding="utf-8") if path is not None else ""
+    return f"// sampler {path} {hashlib.sha1(text.encode()).hexdigest()[:12]}"
+
+
+def fallback(model: Model, strategy: str) -> str | None:
+    """What the view says when `strategy` needs a sampler the model lacks (else None)."""
+    if strategy not in ("brdf", "mis_balance", "mis_power") or sampler_path(model) is not None:
+        return None
+    if model.delta:
+        return None
+    used = "cosine-weighted" if strategy == "brdf" else "MIS of cosine-weighted and environment"
+    return f"{model.name} has no BRDF sampler: {used} sampling instead"
+
+
+def insert_before_view(source: glsl.Source, view: str, text: str, label: str) -> glsl.Source:
+    """Put `text` (sampling code) between the model and the view template."""
+    view_label = glsl.label_of(glsl.VIEW_DIR / f"{view}.glsl")
+    start = next(i for i, (file, _) in enumerate(source.origins) if file == view_label)
+    extra = glsl.Source()
+    extra.add(text, label)
+    source.lines[start:start] = extra.lines
+    source.origins[start:start] = extra.origins
+    return source
+
+
+@dataclass
+class Environment:
+    """An environment image with its sampling tables and GL textures (made on first use)."""
+
+    image: np.ndarray
+    name: str = "environment"
+    tables: environments.Sampling = field(init=False)
+    _textures: list = field(default_factory=list, init=False, repr=False)
+
+    def __post_init__(self):
+        self.image = np.ascontiguousarray(self.image, dtype=np.float32)
+        self.tables = environments.sampling_tables(self.image)
+
+    @classmethod
+    def load(cls, source, size=environments.DEFAULT_SIZE) -> Environment:
+        return cls(environments.load(source, size), str(source))
+
+    @property
+    def size(self) -> tuple[int, int]:
+        return self.image.shape[1], self.image.shape[0]
+
+    def bind(self, ctx: moderngl.Context) -> dict:
+        if not self._textures:
+            w, h = self.size
+            t = self.tables
+            data = [
+                (self.image, (w, h), 3),
+                (t.density, (w, h), 1),
+                (t.marginal.reshape(1, -1), (h + 1, 1), 1),
+                (t.conditional, (w + 1, h), 1),
+            ]
+            for array, size, components in data:
+                texture = ctx.texture(size, components, np.ascontiguousarray(array), dtype="f4")
+                texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+                self._textures.append(texture)
+        for unit, texture in enumerate(self._textures):
+            texture.use(ENV_UNIT + unit)
+        return {
+            "u_env": ENV_UNIT,
+            "u_density": ENV_UNIT + 1,
+            "u_marginal": ENV_UNIT + 2,
+            "u_conditional": ENV_UNIT + 3,
+            "u_env_size": (float(self.size[0]), float(self.size[1])),
+        }
+
+    def release(self) -> None:
+        for texture in self._textures:
+            texture.release()
+        self._textures.clear()
+
+
+class IBLRenderer(Renderer):
+    """A Renderer that also knows the IBL views (it inserts each model's sampler)."""
+
+    def _assemble(self, model: Model, view: str, enums: dict, preamble: str):
+        vertex, source = super()._assemble(model, view, enums, preamble)
+        if view in IBL_VIEWS:
+            path = sampler_path(model)
+            text = path.read_text(encoding="utf-8") if path is not None else NO_SAMPLER
+            label = glsl.label_of(path) if path is not None else "<no sampler>"
+            insert_before_view(source, view, text, label)
+            terms = SAMPLING_TERMS.read_text(encoding="utf-8")
+            insert_before_view(source, view, terms, glsl.label_of(SAMPLING_TERMS))
+            # the terms must precede the sampler: move the sampler after them
+            n_terms = len(terms.splitlines())
+            n_sampler = len(text.splitlines())
+            view_label = glsl.label_of(glsl.VIEW_DIR / f"{view}.glsl")
+            start = next(i for i, (f, _) in enumerate(source.origins) if f == view_label)
+            for seq in (source.lines, source.origins):
+                block = seq[start - n_terms - n_sampler : start]
+                seq[start - n_terms - n_sampler : start] = block[n_sampler:] + block[:n_sampler]
+        return vertex, source
+
+    def set_uniforms(self, program, model: Model, values, uniforms: dict) -> None:
+        resolved = model.resolve(values)
+        bind = getattr(model, "bind", None)
+        data_uniforms = bind(self.ctx) if bind is not None else {}
+        for name, value in {
+            **glsl.uniform_values(model, resolved),
+            **data_uniforms,
+            **uniforms,
+        }.items():
+            if name in program:
+                program[name].value = value
+
+    def compiled(self, model: Model, values, view: str) -> moderngl.Program:
+        resolved = model.resolve(values)
+        enums = {k: v for k, v in resolved.items() if model.params[k].kind == "enum"}
+        return self.program(model, view, enums, sampler_key(model))
+
+    # -- BRDF samples, for the chi-square tests and the grader ---------------------------
+    def brdf_samples(self, model, values, V, seed: int = 1) -> np.ndarray:
+        """One BRDF sample per row of V (n, 3) (local frame, N = z): (n, 4) = L and pdf."""
+        model = as_model(model)
+        V = np.asarray(V, np.float32).reshape(-1, 3)
+        return self._texel_pass(model, values, "ibl_sample", [V], {"u_V": 0, "u_seed": seed})
+
+    def brdf_pdf(self, model, values, L, V) -> np.ndarray:
+        """PDF_BRDF (n,) for direction pairs (local frame, N = z)."""
+        model = as_model(model)
+        L = np.asarray(L, np.float32).reshape(-1, 3)
+        V = np.broadcast_to(np.asarray(V, np.float32).reshape(-1, 3), L.shape)
+        return self._texel_pass(model, values, "ibl_pdf", [L, V], {"u_L": 0, "u_V": 1})[:, 0]
+
+    def _texel_pass(self, model: Model, values, view: str, inputs, uniforms) -> np.ndarray:
+        n = len(inputs[0])
+        width = min(max(n, 1), 1024)
+        height = max(math.ceil(n / width), 1)
+        textures = []
+        for unit, data in enumerate(inputs):
+            padded = np.zeros((width * height, 4), np.float32)
+            padded[:n, :3] = data
+            texture = self.ctx.texture((width, height), 4, padded, dtype="f4")
+            texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+            texture.use(unit)
+            textures.append(texture)
+        try:
+            fbo = self._run(model, view, values, (width, height), uniforms, sampler_key(model))
+            return self._read(fbo).reshape(-1, 4)[:n].astype(np.float64)
+        finally:
+            for texture in textures:
+                texture.release()
+
+
+class Progressive:
+    """One progressive IBL render: passes of samples summed into a float target.
+
+    `add(spp)` runs a pass; `image()` is the running mean (size, size, 4), alpha 1 on the
+    sphere; `reset()` starts again (a slider moved). Samples are counted per pixel.
+    """
+
+    def __init__(
+        self,
+        renderer: IBLRenderer,
+        model: Model | str,
+        values: dict[str, Value] | None,
+        environment: Environment,
+        strategy: str = "mis_power",
+        size: int = 256,
+        rotation: float = 0.0,
+        seed: int = 0,
+    ):
+        if strategy not in STRATEGIES:
+            raise ValueError(f"unknown strategy {strategy!r}: use one of {', '.join(STRATEGIES)}")
+        self.renderer = renderer
+        self.model = as_model(model)
+        self.values = dict(values or {})
+        self.environment = environment
+        self.strategy = strategy
+        self.size = int(size)
+        self.rotation = float(rotation)
+        self.seed = int(seed)
+        self.samples = 0
+        self.passes = 0
+        ctx = renderer.ctx
+        self._texture = ctx.texture((self.size, self.size), 4, dtype="f4")
+        self._fbo = ctx.framebuffer(color_attachments=[self._texture])
+        self._fbo.clear(0.0, 0.0, 0.0, 0.0)
+        self.program = renderer.compiled(self.model, self.values, "ibl")
+
+    @property
+    def fallback(self) -> str | None:
+        return fallback(self.model, self.strategy)
+
+    def reset(self, **changes) -> None:
+        """Start again, with any of values, environment, strategy, rotation changed."""
+        for name, value in changes.items():
+            setattr(self, name, value)
+        if "values" in changes or "model" in changes:
+            self.program = self.renderer.compiled(self.model, self.values, "ibl")
+        self.samples = self.passes = 0
+        self._fbo.clear(0.0, 0.0, 0.0, 0.0)
+
+    def add(self, spp: int = 4) -> None:
+        """One pass of `spp` samples per pixel (a pass longer than ~0.2 s stalls a UI)."""
+        spp = int(min(max(spp, 1), 1024))
+        ctx = self.renderer.ctx
+        uniforms = {
+            "u_resolution": (float(self.size), float(self.size)),
+            "u_rotation": math.radians(self.rotation),
+            "u_strategy": STRATEGIES.index(self.strategy),
+            "u_spp": spp,
+            "u_frame": self.passes,
+            "u_seed": self.seed,
+            **self.environment.bind(ctx),
+        }
+        self.renderer.set_uniforms(self.program, self.model, self.values, uniforms)
+        previous = ctx.fbo  # bound again after: our target may be released while bound
+        self._fbo.use()
+        ctx.enable(moderngl.BLEND)
+        ctx.blend_func = moderngl.ONE, moderngl.ONE
+        try:
+            self.renderer._vaos[id(self.program)].render(moderngl.TRIANGLES, vertices=3)
+        finally:
+            ctx.disable(moderngl.BLEND)
+            ctx.blend_func = moderngl.DEFAULT_BLENDING
+            if previous is not None and previous is not self._fbo:
+                previous.use()
+        self.samples += spp
+        self.passes += 1
+
+    def run(self, samples: int, spp: int = 16) -> Progressive:
+        """Passes until `samples` per pixel (the last pass may be shorter)."""
+        while self.samples < samples:
+            self.add(min(spp, samples - self.samples))
+        return self
+
+    def image(self) -> np.ndarray:
+        """The running mean: (size, size, 4) float32, row 0 at the top, alpha 1 on the sphere."""
+        data = np.frombuffer(self._fbo.read(components=4, dtype="f4"), dtype=np.float32)
+        data = data.reshape(self.size, self.size, 4)[::-1]
+        if self.samples == 0:
+            return np.zeros_like(data)
+        return (data / float(self.samples)).astype(np.float32)
+
+    def release(self) -> None:
+        if self.renderer.ctx.fbo is self._fbo:  # never leave a released target bound
+            self.renderer.target(1, 1).use()
+        self._fbo.release()
+        self._texture.release()
+
+
+def render(
+    model: Model | str,
+    values: dict | None = None,
+    environment: Environment | str = "sky",
+    strategy: str = "mis_power",
+    samples: int = 256,
+    size: int = 256,
+    rotation: float = 0.0,
+    seed: int = 0,
+    renderer: IBLRenderer | None = None,
+) -> np.ndarray:
+    """A finished IBL render of the sphere: (size, size, 4) float32, row 0 at the top."""
+    renderer = renderer or IBLRenderer()
+    env = environment if isinstance(environment, Environment) else Environment.load(environment)
+    job = Progressive(renderer, model, values, env, strategy, size, rotation, seed)
+    try:
+        return job.run(samples).image()
+    finally:
+        job.release()
+
+
+def sphere_normals(size: int) -> tuple[np.ndarray, np.ndarray]:
+    """Normals (size, size, 3) of the ibl view's pixels (row 0 at the top) and the mask."""
+    c = (np.arange(size) + 0.5) / size * 2.0 - 1.0
+    x, y = np.meshgrid(c, -c)
+    r2 = x * x + y * y
+    mask = r2 <= 1.0
+    N = np.stack([x, y, np.sqrt(np.clip(1.0 - r2, 0.0, 1.0))], axis=-1)
+    return N, mask
+
+
+def render_png(
+    model: Model,
+    values,
+    job,
+    out,
+    env: str = "sky",
+    strategy: str = "mis_power",
+    samples: int = 256,
+    rotation: float = 0.0,
+) -> list[str]:
+    """`brdf-lab render --view ibl`: render, save the PNG, return the lines to print.
+    `job` is the registry's PlotJob (size, exposure)."""
+    from lab import plots
+    from lab.errors import UsageError
+
+    if strategy not in STRATEGIES:
+        raise UsageError(f"--strategy {strategy!r}: use one of {', '.join(STRATEGIES)}")
+    if not 1 <= samples <= 1_000_000:
+        raise UsageError(f"--samples {samples} is outside 1..1000000")
+    try:
+        environment = Environment.load(env)
+    except environments.EnvironmentError as err:
+        raise UsageError(f"--env: {err}") from None
+    lines = []
+    note = fallback(model, strategy)
+    if note:
+        lines.append(f"note: {note}")
+    image = render(model, values, environment, strategy, samples, job.size, rotation)
+    if environment.name == "furnace":
+        peak = float((image[..., :3][image[..., 3] > 0.5] @ np.array(LUMA)).max())
+        if peak > 1.01:
+            lines.append(
+                f"energy gain: the sphere reflects up to {peak:.2f}x the furnace's radiance "
+                "(a physically based BRDF stays at or below 1)"
+            )
+    plots.save_image(image[..., :3], out, job.exposure)  # the environment behind, opaque
+    lines.append(
+        f"{samples} samples/pixel, {STRATEGY_TITLES[strategy]}, environment {environment.name}"
+    )
+    return lines

@@ -1,0 +1,37 @@
+"""Image-based lighting: the sphere under an environment, the reflection equation by
+progressive Monte Carlo on the GPU (lab/ibl, shaders/views/ibl.glsl)."""
+
+from __future__ import annotations
+
+from lab.views import PlotJob, Setting, ViewSpec
+
+# Kept here (not imported from lab.ibl) so the registry stays light; tests tie them.
+ENVIRONMENTS = ("sky", "furnace", "studio", "grey_room")
+STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power")
+
+
+def plot(job: PlotJob) -> None:
+    """`brdf-lab render --view ibl`: the CLI puts its --env/--strategy/... on job.ibl."""
+    from lab.ibl.integrator import render_png
+
+    options = getattr(job, "ibl", None) or {}
+    for line in render_png(job.model, job.values, job, job.out, **options):
+        print(line)
+
+
+VIEW = ViewSpec(
+    name="ibl",
+    title="Image-based lighting",
+    settings={
+        "ibl_env": Setting(0, 0, len(ENVIRONMENTS) - 1, "environment", choices=ENVIRONMENTS),
+        "ibl_strategy": Setting(5, 0, len(STRATEGIES) - 1, "sampling", choices=STRATEGIES),
+        "ibl_compare": Setting(-1, -1, len(STRATEGIES) - 1, "side by side with"),
+        "ibl_samples": Setting(1024, 1, 65536, "samples/pixel"),
+        "ibl_rotation": Setting(0.0, 0.0, 360.0, "rotation", 1.0),
+        "ibl_exposure": Setting(0.0, -8.0, 8.0, "exposure", 0.1),
+    },
+    dock=("bottom", 2),
+    widget="lab.app.ibl_view:IBLView",
+    plot=plot,
+    order=80,
+)
