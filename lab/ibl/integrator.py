@@ -16,7 +16,6 @@ import moderngl
 import numpy as np
 
 from lab import glsl
-from lab.constants import LUMA
 from lab.ibl import environments
 from lab.models import SHADER_DIR, Model, Value
 from lab.render import Renderer, as_model
@@ -360,7 +359,9 @@ def render_png(
         lines.append(f"note: {note}")
     image = render(model, values, environment, strategy, samples, job.size, rotation)
     if environment.name == "furnace":
-        peak = float((image[..., :3][image[..., 3] > 0.5] @ np.array(LUMA)).max())
+        from lab.ibl.furnace import ring_peak
+
+        peak = ring_peak(image)
         if peak > 1.01:
             lines.append(
                 f"energy gain: the sphere reflects up to {peak:.2f}x the furnace's radiance "

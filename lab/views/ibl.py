@@ -8,6 +8,7 @@ from lab.views import PlotJob, Setting, ViewSpec
 # Kept here (not imported from lab.ibl) so the registry stays light; tests tie them.
 ENVIRONMENTS = ("sky", "furnace", "studio", "grey_room")
 STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power")
+COMPARE = ("alone", *(f"vs {s}" for s in STRATEGIES))
 
 
 def plot(job: PlotJob) -> None:
@@ -25,8 +26,8 @@ VIEW = ViewSpec(
     settings={
         "ibl_env": Setting(0, 0, len(ENVIRONMENTS) - 1, "environment", choices=ENVIRONMENTS),
         "ibl_strategy": Setting(5, 0, len(STRATEGIES) - 1, "sampling", choices=STRATEGIES),
-        "ibl_compare": Setting(-1, -1, len(STRATEGIES) - 1, "side by side with"),
-        "ibl_samples": Setting(1024, 1, 65536, "samples/pixel"),
+        "ibl_compare": Setting(0, 0, len(STRATEGIES), "side by side", choices=COMPARE),
+        "ibl_samples": Setting(256, 1, 65536, "samples/pixel"),
         "ibl_rotation": Setting(0.0, 0.0, 360.0, "rotation", 1.0),
         "ibl_exposure": Setting(0.0, -8.0, 8.0, "exposure", 0.1),
     },

@@ -1,0 +1,261 @@
+"""The desktop lab's image-based lighting view: the selected model's sphere under an
+environment, integrated progressively on the GPU (lab/ibl), optionally beside a second
+strategy at equal samples, with the estimated error against samples on a log-log plot.
+
+The error needs no reference: each strategy runs as two independent halves (different
+seeds), and RMS(A - B) / 2 / RMS((A + B) / 2) estimates the relative RMS error of their
+mean. Passes run from the view's own timer while it is shown, so the window's refinement
+(and the tests' flush) never waits for convergence.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pyqtgraph as pg
+from PyQt6.QtCore import Qt, QTimer
+from PyQt6.QtWidgets import QFileDialog, QLabel, QPushButton, QSplitter
+
+from lab.app.views import ImageRow, View, state_key, tonemap
+from lab.app.widgets import SettingCombo, SettingSlider
+from lab.constants import LUMA
+from lab.glsl import ShaderCompileError
+from lab.ibl import environments
+from lab.ibl.furnace import local_view, ring_peak
+from lab.ibl.integrator import STRATEGY_TITLES, Environment, IBLRenderer, Progressive, fallback
+from lab.models import ModelError
+from lab.views.ibl import COMPARE, ENVIRONMENTS, STRATEGIES
+
+SIZE = 192  # pixels per sphere: llvmpipe manages a few passes a second at this size
+PASS_SPP = 2
+COLORS = ("#ffb000", "#4aa3ff")
+
+
+class Run:
+    """One strategy as two independent progressive halves."""
+
+    def __init__(self, renderer, model, values, env, strategy, size):
+        self.halves = [
+            Progressive(renderer, model, values, env, strategy, size, seed=seed)
+            for seed in (11, 29)
+        ]
+        self.strategy = strategy
+        self.history: list[tuple[int, float]] = []
+
+    @property
+    def samples(self) -> int:
+        return sum(h.samples for h in self.halves)
+
+    def add(self, spp: int) -> None:
+        for half in self.halves:
+            half.add(spp)
+
+    def image(self) -> np.ndarray:
+        a, b = (h.image() for h in self.halves)
+        mean = 0.5 * (a + b)
+        mask = mean[..., 3] > 0.5
+        if mask.any():
+            rms = np.sqrt(np.mean(mean[..., :3][mask] ** 2))
+            error = np.sqrt(np.mean((a[..., :3][mask] - b[..., :3][mask]) ** 2)) / 2.0
+            if rms > 0 and (not self.history or self.history[-1][0] != self.samples):
+                self.history.append((self.samples, float(error / rms)))
+        return mean
+
+    def release(self) -> None:
+        for half in self.halves:
+            half.release()
+
+
+class IBLView(View):
+    title = "Image-based lighting"
+    name = "ibl"
+
+    def __init__(self, lab, renderer):
+        super().__init__(lab, renderer)
+        s = lab.settings
+        self.gl = IBLRenderer(renderer.ctx)
+        self.tools.addWidget(SettingCombo(s, "ibl_env", ENVIRONMENTS))
+        self.open_button = QPushButton("Open HDR…")
+        self.open_button.clicked.connect(self.open_file)
+        self.tools.addWidget(self.open_button)
+        self.tools.addWidget(SettingCombo(s, "ibl_strategy", STRATEGIES))
+        self.tools.addWidget(SettingCombo(s, "ibl_compare", COMPARE))
+        self.tools.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
+        self.tools.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
+        self.canvas = ImageRow()
+        self.status = QLabel("")
+        self.status.setWordWrap(True)
+        self.plot = pg.PlotWidget()
+        self.plot.setLogMode(True, True)
+        self.plot.setLabel("bottom", "samples per pixel")
+        self.plot.setLabel("left", "relative RMS error")
+        self.plot.addLegend(offset=(-5, 5))
+        split = QSplitter()
+        split.addWidget(self.canvas)
+        split.addWidget(self.plot)
+        split.setSizes([600, 300])
+        self.layout_.addWidget(split, 1)
+        self.layout_.addWidget(self.status)
+        self.user_file: Path | None = None
+        self.environments: dict[str, Environment] = {}
+        self.runs: list[Run] = []
+        self.key: tuple | None = None
+        self.note = ""
+        self.timer = QTimer(self)
+        self.timer.setSingleShot(True)
+        self.timer.timeout.connect(self.step)
+
+    # -- inputs ---------------------------------------------------------------------------
+    def open_file(self) -> None:
+        name, _ = QFileDialog.getOpenFileName(
+            self, "Open an environment", "", "HDR images (*.hdr *.pic *.exr)"
+        )
+        if name:
+            self.load_file(name)
+
+    def load_file(self, path) -> None:
+        """Use an equirectangular .hdr/.exr file (reported in the status line if bad)."""
+        try:
+            self.environments[str(path)] = Environment.load(path)
+            self.user_file = Path(path)
+        except environments.EnvironmentError as err:
+            self.status.setText(f"cannot use that file: {err}")
+            return
+        self.request()
+
+    def environment(self) -> Environment:
+        name = str(self.user_file) if self.user_file else ENVIRONMENTS[self.lab.settings["ibl_env"]]
+        if name not in self.environments:
+            self.environments[name] = Environment.load(name)
+        return self.environments[name]
+
+    def strategies(self) -> list[str]:
+        s = self.lab.settings
+        chosen = [STRATEGIES[s["ibl_strategy"]]]
+        if s["ibl_compare"] > 0:
+            chosen.append(STRATEGIES[s["ibl_compare"] - 1])
+        return chosen
+
+    def inputs(self) -> tuple:
+        s = self.lab.settings
+        state = self.lab.selected
+        model = state_key(state) if state else None
+        env = str(self.user_file) if self.user_file else s["ibl_env"]
+        return (model, env, tuple(self.strategies()), s["ibl_rotation"], s["ibl_samples"])
+
+    def request(self) -> None:
+        request = getattr(self.window(), "request", None)
+        if request is not None:
+            request()
+
+    # -- drawing --------------------------------------------------------------------------
+    def draw(self, fast: bool) -> bool:
+        """Restart the runs when the inputs changed; passes continue from the timer."""
+        key = self.inputs()
+        if key != self.key:
+            self.restart()
+            self.key = key
+        self.show_images()
+        return False
+
+    def restart(self) -> None:
+        for run in self.runs:
+            run.release()
+        self.runs = []
+        self.plot.clear()
+        state = self.lab.selected
+        if state is None:
+            self.note = "add a model to light it"
+            return
+        env = self.environment()
+        s = self.lab.settings
+        try:
+            for strategy in self.strategies():
+                run = Run(self.gl, state.model, state.values, env, strategy, SIZE)
+                for half in run.halves:
+                    half.rotation = s["ibl_rotation"]
+                self.runs.append(run)
+        except (ShaderCompileError, ModelError) as err:
+            self.note = f"{state.label}: {err}"
+            self.runs = []
+            return
+        notes = [n for n in (fallback(state.model, st) for st in self.strategies()) if n]
+        self.note = "; ".join(dict.fromkeys(notes))
+        self.step()
+
+    def step(self) -> None:
+        """One pass for each run, then the next, until the sample target."""
+        target = self.lab.settings["ibl_samples"]
+        if not self.runs or not self.is_shown():
+            return
+        if self.runs[0].samples < target:
+            for run in self.runs:
+                run.add(min(PASS_SPP, max((target - run.samples) // 2, 1)))
+            self.show_images()
+        if self.runs[0].samples < target:
+            self.timer.start(0)
+
+    def show_images(self) -> None:
+        s = self.lab.settings
+        env = self.environment()
+        images, texts = [], []
+        for run in self.runs:
+            image = run.image() if run.samples else np.zeros((SIZE, SIZE, 4), np.float32)
+            shown = image.copy()
+            shown[..., 3] = 1.0  # the environment behind the sphere
+            if env.name == "furnace":
+                shown = self.mark_gain(shown)
+            images.append((tonemap(shown, s["ibl_exposure"], 2.2), STRATEGY_TITLES[run.strategy]))
+            texts.append(self.gain_text(image, env))
+        self.canvas.images = [(img, cap, COLORS[i]) for i, (img, cap) in enumerate(images)]
+        self.canvas.update()
+        self.draw_plot()
+        count = self.runs[0].samples if self.runs else 0
+        parts = [f"{count} / {s['ibl_samples']} samples per pixel"]
+        if len(self.runs) > 1:
+            parts[0] += " each (equal samples)"
+        parts += [t for t in texts if t] + ([self.note] if self.note else [])
+        self.status.setText(" · ".join(dict.fromkeys(parts)))
+
+    @staticmethod
+    def gain_text(image: np.ndarray, env: Environment) -> str:
+        """Under the white furnace, radiance above 1 is energy the BRDF creates: say so."""
+        if env.name != "furnace" or not (image[..., 3] > 0.5).any():
+            return ""
+        peak = ring_peak(image)
+        if peak > 1.01:
+            return f"ENERGY GAIN: reflects up to {peak:.2f}× the light it receives (> 1)"
+        return f"furnace: at most {peak:.2f} of the light is reflected (≤ 1)"
+
+    @staticmethod
+    def mark_gain(image: np.ndarray) -> np.ndarray:
+        """Tint red the rings of the sphere whose mean reflectance exceeds 1 (in the white
+        furnace they would otherwise vanish into the white background)."""
+        theta, _, mask = local_view(image.shape[0])
+        rings = np.minimum((theta / 90.0 * 24).astype(int), 23)
+        lum = image[..., :3] @ np.array(LUMA)
+        for ring in range(24):
+            where = mask & (rings == ring)
+            if where.any() and lum[where].mean() > 1.01:
+                image[where, :3] = np.minimum(image[where, :3], 1.0) * 0.3 + np.array([0.7, 0.0, 0.0])
+        return image
+
+    def draw_plot(self) -> None:
+        self.plot.clear()
+        first = None
+        for index, run in enumerate(self.runs):
+            if len(run.history) < 2:
+                continue
+            n, e = np.array(run.history).T
+            self.plot.plot(n, e, pen=pg.mkPen(COLORS[index], width=2), name=run.strategy)
+            first = first or (n[0], e[0], n[-1])
+        if first:  # the 1/sqrt(N) line through the first run's first point
+            n0, e0, n1 = first
+            ns = np.array([n0, max(n1, n0 * 4)])
+            self.plot.plot(
+                ns,
+                e0 * np.sqrt(n0 / ns),
+                pen=pg.mkPen("#999", width=1, style=Qt.PenStyle.DashLine),
+                name="1/√N",
+            )
