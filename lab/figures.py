@@ -74,6 +74,10 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     # The moon is exposed 3 stops up so both discs have the same brightness at the centre.
     for name, exposure in (("lambert", 0.0), ("lommel_seeliger", 3.0)):
         paths.append(_sphere(renderer, outdir / f"full_{name}.png", name, {}, (0.0, 0.0), exposure))
+    # The reflection equation by Monte Carlo (lab.ibl): equal samples, and the furnace.
+    from lab.ibl.figures import ibl_figures
+
+    paths += ibl_figures(outdir, renderer.ctx)
     return paths
 
 

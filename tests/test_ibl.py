@@ -221,7 +221,8 @@ def test_cli_render_ibl(tmp_path, capsys):
     assert code == 0
     text = capsys.readouterr().out
     assert "energy gain" in text
-    pixels = np.asarray(Image.open(out))
+    with Image.open(out) as image:
+        pixels = np.asarray(image)
     assert pixels.shape == (64, 64, 3) and pixels[32, 32].min() == 255  # clipped: above 1
     code = main(["render", "ggx", "--view", "ibl", "--env", "x.hdr", "-o", str(out)])
     assert code == 2 and "x.hdr: no such file" in capsys.readouterr().err
@@ -253,3 +254,20 @@ def test_every_model_compiles_in_the_ibl_views(ibl, name):
     for enums in choices:
         for view in ("ibl", "ibl_sample", "ibl_pdf"):
             ibl.program(model, view, enums, sampler_key(model))
+
+
+def test_ibl_bench_prints_its_figures(tmp_path, capsys):
+    """A tiny run of `brdf-lab ibl-bench` (the real one takes minutes): every strategy gets a
+    throughput and a time to 1%, and the log-log plot is written."""
+    from lab.ibl import bench
+
+    plot = tmp_path / "convergence.png"
+    figures = bench.run(size=16, reference_samples=256, budget_s=0.2, plot=plot)
+    text = capsys.readouterr().out
+    for strategy in STRATEGIES:
+        assert figures["throughput"][strategy] > 0
+        assert figures["time_to_target"][strategy] > 0
+        assert strategy in text
+    assert "sooner than uniform" in text
+    with Image.open(plot) as image:
+        assert image.size[0] > 400

@@ -45,6 +45,7 @@ LAYERS = {  # module -> layer; a feature package's modules default to the top la
     "lab.ibl.furnace": 2,
     "lab.ibl.chisquare": 2,
     "lab.ibl.bench": 2,
+    "lab.ibl.figures": 2,
     "lab.cli": 3,
 }
 TOP = 4

@@ -22,8 +22,15 @@ from lab.app.widgets import SettingCombo, SettingSlider
 from lab.constants import LUMA
 from lab.glsl import ShaderCompileError
 from lab.ibl import environments
-from lab.ibl.furnace import local_view, ring_peak
-from lab.ibl.integrator import STRATEGY_TITLES, Environment, IBLRenderer, Progressive, fallback
+from lab.ibl.integrator import (
+    STRATEGY_TITLES,
+    Environment,
+    IBLRenderer,
+    Progressive,
+    fallback,
+    local_view,
+    ring_peak,
+)
 from lab.models import ModelError
 from lab.views.ibl import COMPARE, ENVIRONMENTS, STRATEGIES
 
@@ -238,7 +245,9 @@ class IBLView(View):
         for ring in range(24):
             where = mask & (rings == ring)
             if where.any() and lum[where].mean() > 1.01:
-                image[where, :3] = np.minimum(image[where, :3], 1.0) * 0.3 + np.array([0.7, 0.0, 0.0])
+                image[where, :3] = np.minimum(image[where, :3], 1.0) * 0.3 + np.array(
+                    [0.7, 0.0, 0.0]
+                )
         return image
 
     def draw_plot(self) -> None:

@@ -6,7 +6,11 @@ from __future__ import annotations
 def cmd_ibl_bench(args) -> int:
     from lab.ibl import bench
 
-    bench.run(size=args.size, reference_samples=args.reference, budget_s=args.budget)
+    if args.plot:
+        from lab.errors import check_output
+
+        args.plot = check_output(args.plot, ".png")
+    bench.run(args.size, args.reference, args.budget, args.plot)
     return 0
 
 
@@ -22,4 +26,5 @@ def register(sub) -> None:
     p.add_argument(
         "--budget", type=float, default=20.0, help="seconds per strategy before extrapolating"
     )
+    p.add_argument("--plot", metavar="OUT.png", help="save the log-log convergence plot")
     p.set_defaults(func=cmd_ibl_bench)

@@ -175,6 +175,10 @@ def load(source: str | Path, size: tuple[int, int] = DEFAULT_SIZE) -> np.ndarray
     text = str(source)
     if text in PROCEDURAL:
         return procedural(text, size)
+    if Path(text).suffix.lower() not in FILE_TYPES and not Path(text).is_file():
+        raise EnvironmentError(
+            f"unknown environment {text!r}: use one of {', '.join(PROCEDURAL)} or an .hdr/.exr file"
+        )
     return read_file(text)
 
 

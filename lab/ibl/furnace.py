@@ -9,8 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lab.constants import LUMA
-from lab.ibl.integrator import Environment, IBLRenderer, render, sphere_normals
+from lab.ibl.integrator import Environment, IBLRenderer, local_view, render, ring_peak
 from lab.models import Model
 from lab.render import as_model
 
@@ -33,19 +32,6 @@ class FurnaceResult:
     def energy_gain(self) -> bool:
         """Reflects more than it receives somewhere (beyond the Monte Carlo noise)."""
         return self.peak > 1.01
-
-
-def local_view(size: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """theta and phi (degrees) of V in each pixel's local frame (as ibl.glsl builds it)."""
-    N, mask = sphere_normals(size)
-    X = np.stack([N[..., 2], np.zeros_like(N[..., 0]), -N[..., 0]], axis=-1)
-    norm = np.linalg.norm(X, axis=-1, keepdims=True)
-    X = np.where(norm > 1e-6, X / np.maximum(norm, 1e-12), np.array([1.0, 0.0, 0.0]))
-    Y = np.cross(N, X)
-    V = np.array([0.0, 0.0, 1.0])
-    theta = np.degrees(np.arccos(np.clip(N @ V, -1.0, 1.0)))
-    phi = np.degrees(np.arctan2(Y @ V, X @ V)) % 360.0
-    return theta, phi, mask
 
 
 def albedo_table(renderer: IBLRenderer, model: Model, values, thetas, phis) -> np.ndarray:
@@ -91,14 +77,3 @@ def furnace(
     albedo = np.stack([a[which == b].mean(axis=0) for b in range(BINS)])
     peak = ring_peak(image)
     return FurnaceResult(0.5 * (edges[1:] + edges[:-1]), rendered, albedo, peak)
-
-
-def ring_peak(image: np.ndarray, rings: int = 24) -> float:
-    """The largest mean luminance over rings of equal view angle on the sphere: the furnace's
-    reflectance peak, with the Monte Carlo noise of single pixels averaged away."""
-    size = image.shape[0]
-    theta, _, mask = local_view(size)
-    lum = image[..., :3] @ np.array(LUMA)
-    which = np.minimum((theta / 90.0 * rings).astype(int), rings - 1)
-    means = [lum[mask & (which == r)].mean() for r in range(rings) if (mask & (which == r)).any()]
-    return float(max(means)) if means else 0.0

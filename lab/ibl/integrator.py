@@ -16,6 +16,7 @@ import moderngl
 import numpy as np
 
 from lab import glsl
+from lab.constants import LUMA
 from lab.ibl import environments
 from lab.models import SHADER_DIR, Model, Value
 from lab.render import Renderer, as_model
@@ -359,8 +360,6 @@ def render_png(
         lines.append(f"note: {note}")
     image = render(model, values, environment, strategy, samples, job.size, rotation)
     if environment.name == "furnace":
-        from lab.ibl.furnace import ring_peak
-
         peak = ring_peak(image)
         if peak > 1.01:
             lines.append(
@@ -372,3 +371,27 @@ def render_png(
         f"{samples} samples/pixel, {STRATEGY_TITLES[strategy]}, environment {environment.name}"
     )
     return lines
+
+
+def local_view(size: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """theta and phi (degrees) of V in each pixel's local frame (as ibl.glsl builds it)."""
+    N, mask = sphere_normals(size)
+    X = np.stack([N[..., 2], np.zeros_like(N[..., 0]), -N[..., 0]], axis=-1)
+    norm = np.linalg.norm(X, axis=-1, keepdims=True)
+    X = np.where(norm > 1e-6, X / np.maximum(norm, 1e-12), np.array([1.0, 0.0, 0.0]))
+    Y = np.cross(N, X)
+    V = np.array([0.0, 0.0, 1.0])
+    theta = np.degrees(np.arccos(np.clip(N @ V, -1.0, 1.0)))
+    phi = np.degrees(np.arctan2(Y @ V, X @ V)) % 360.0
+    return theta, phi, mask
+
+
+def ring_peak(image: np.ndarray, rings: int = 24) -> float:
+    """The largest mean luminance over rings of equal view angle on the sphere: the furnace's
+    reflectance peak, with the Monte Carlo noise of single pixels averaged away."""
+    size = image.shape[0]
+    theta, _, mask = local_view(size)
+    lum = image[..., :3] @ np.array(LUMA)
+    which = np.minimum((theta / 90.0 * rings).astype(int), rings - 1)
+    means = [lum[mask & (which == r)].mean() for r in range(rings) if (mask & (which == r)).any()]
+    return float(max(means)) if means else 0.0
