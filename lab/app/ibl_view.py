@@ -161,8 +161,10 @@ class IBLView(View):
         """Restart the runs when the inputs changed; passes continue from the timer."""
         key = self.inputs()
         if key != self.key:
-            self.restart()
             self.key = key
+            self.restart()
+        elif self.runs and not self.timer.isActive():
+            self.timer.start(0)  # brought forward again: carry on where it stopped
         self.show_images()
         return False
 

@@ -172,6 +172,7 @@ class MainWindow(QMainWindow):
         # Every registered view gets a dock, placed by its spec: rows in its area stack
         # (the spheres on top), the views of a row sit side by side.
         rows: dict[tuple[str, int], list[QDockWidget]] = {}
+        tabs: list[tuple[str, QDockWidget]] = []
         for spec in views.all_views():
             view = spec.widget_class()(self.lab, self.renderer)
             dock = QDockWidget(spec.title, self)
@@ -181,6 +182,9 @@ class MainWindow(QMainWindow):
             self.addDockWidget(DOCK_AREAS[spec.dock[0]], dock)
             self.views.append(view)
             self.docks[spec.name] = dock
+            if spec.tab_of:
+                tabs.append((spec.tab_of, dock))
+                continue
             rows.setdefault(spec.dock, []).append(dock)
         self.dock_rows = [row for _, row in sorted(rows.items())]
         for area in DOCK_AREAS:
@@ -191,6 +195,9 @@ class MainWindow(QMainWindow):
                 for left, right in zip(row, row[1:], strict=False):
                     self.splitDockWidget(left, right, Qt.Orientation.Horizontal)
                 above = row[0]
+        for owner, dock in tabs:  # a tab behind its owner: drawn only when brought forward
+            self.tabifyDockWidget(self.docks[owner], dock)
+            self.docks[owner].raise_()
 
     def controls_cap(self) -> int:
         """The widest the controls panel may be: a fifth of the screen when presenting."""

@@ -82,6 +82,7 @@ class ViewSpec:
     settings: dict[str, Setting] = field(default_factory=dict)
     # The app's dock area ("right" or "bottom") and row there: views of a row sit side by side.
     dock: tuple[str, int] = ("right", 1)
+    tab_of: str = ""  # another view's name: share its dock as a tab behind it (heavy views)
     widget: str = ""  # "module:Class" of its Qt widget (imported only by the app)
     plot: Callable[[PlotJob], None] | None = None  # its PNG for `render --view` (None: app only)
     order: int = 100  # position in menus and docks
