@@ -31,8 +31,8 @@ VIEW = ViewSpec(
         "ibl_rotation": Setting(0.0, 0.0, 360.0, "rotation", 1.0),
         "ibl_exposure": Setting(0.0, -8.0, 8.0, "exposure", 0.1),
     },
-    dock=("bottom", 0),
-    tab_of="object",  # behind the lit object: its passes run only while it is in front
+    dock=("right", 0),
+    tab_of="sphere",  # behind the lit spheres: its passes run only while it is in front
     widget="lab.app.ibl_view:IBLView",
     plot=plot,
     order=80,
