@@ -15,7 +15,15 @@ from pathlib import Path
 import numpy as np
 import pyqtgraph as pg
 from PyQt6.QtCore import Qt, QTimer
-from PyQt6.QtWidgets import QFileDialog, QLabel, QPushButton, QSplitter
+from PyQt6.QtWidgets import (
+    QComboBox,
+    QFileDialog,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSizePolicy,
+    QSplitter,
+)
 
 from lab.app.views import ImageRow, View, state_key, tonemap
 from lab.app.widgets import SettingCombo, SettingSlider
@@ -82,18 +90,35 @@ class IBLView(View):
         super().__init__(lab, renderer)
         s = lab.settings
         self.gl = IBLRenderer(renderer.ctx)
-        self.tools.addWidget(SettingCombo(s, "ibl_env", ENVIRONMENTS))
-        self.open_button = QPushButton("Open HDR…")
+        # Two short rows, combos that may shrink: the view must fit a 1024-pixel projector
+        # in presenter mode, where it shares the spheres' column.
+        combos = [
+            SettingCombo(s, "ibl_env", ENVIRONMENTS),
+            SettingCombo(s, "ibl_strategy", STRATEGIES),
+            SettingCombo(s, "ibl_compare", COMPARE),
+        ]
+        for combo in combos:
+            combo.setSizeAdjustPolicy(
+                QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon
+            )
+            combo.setMinimumContentsLength(5)
+        self.open_button = QPushButton("HDR…")
+        self.open_button.setToolTip("open an equirectangular .hdr or .exr environment")
         self.open_button.clicked.connect(self.open_file)
-        self.tools.addWidget(self.open_button)
-        self.tools.addWidget(SettingCombo(s, "ibl_strategy", STRATEGIES))
-        self.tools.addWidget(SettingCombo(s, "ibl_compare", COMPARE))
-        self.tools.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
-        self.tools.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
+        for widget in (combos[0], self.open_button, combos[1], combos[2]):
+            self.tools.addWidget(widget)
+        second = QHBoxLayout()
+        second.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
+        second.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
+        self.second = second
+        self.layout_.addLayout(second)
         self.canvas = ImageRow()
+        self.canvas.setMinimumSize(64, 48)
         self.status = QLabel("")
-        self.status.setWordWrap(True)
+        # One line whatever the width (the tooltip holds it all): the dock must stay short.
+        self.status.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Fixed)
         self.plot = pg.PlotWidget()
+        self.plot.setMinimumSize(64, 48)
         self.plot.setLogMode(True, True)
         self.plot.setLabel("bottom", "samples per pixel")
         self.plot.setLabel("left", "relative RMS error")
@@ -103,7 +128,7 @@ class IBLView(View):
         split.addWidget(self.plot)
         split.setSizes([600, 300])
         self.layout_.addWidget(split, 1)
-        self.layout_.addWidget(self.status)
+        self.second.addWidget(self.status, 2)  # beside the sliders: one row less of height
         self.user_file: Path | None = None
         self.environments: dict[str, Environment] = {}
         self.runs: list[Run] = []
@@ -226,6 +251,7 @@ class IBLView(View):
             parts[0] += " each (equal samples)"
         parts += [t for t in texts if t] + ([self.note] if self.note else [])
         self.status.setText(" · ".join(dict.fromkeys(parts)))
+        self.status.setToolTip(self.status.text())
 
     @staticmethod
     def gain_text(image: np.ndarray, env: Environment) -> str:

@@ -195,9 +195,10 @@ class MainWindow(QMainWindow):
                 for left, right in zip(row, row[1:], strict=False):
                     self.splitDockWidget(left, right, Qt.Orientation.Horizontal)
                 above = row[0]
-        for owner, dock in tabs:  # a tab behind its owner: drawn only when brought forward
+        for owner, dock in tabs:  # a tab behind its owner, closed until the View menu opens it
             self.tabifyDockWidget(self.docks[owner], dock)
             self.docks[owner].raise_()
+            dock.hide()  # no tab bar either: the default layout keeps its sizes
 
     def controls_cap(self) -> int:
         """The widest the controls panel may be: a fifth of the screen when presenting."""
