@@ -12,19 +12,37 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from lab import constants, views
-from lab.models import SHADER_DIR, model_names
+from lab.models import SHADER_DIR, ModelError, model_names
+from lab.presets import read_preset, shipped_presets
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
 
 
+def presets() -> list[dict]:
+    """The desktop lab's shipped presets (the same TOML files), as the page reads them.
+
+    A preset that does not parse is left out here; the desktop lab reports its error.
+    """
+    out = []
+    for path in shipped_presets():
+        try:
+            data = read_preset(path)
+        except ModelError:
+            continue
+        out.append({"file": path.name, **data})
+    return out
+
+
 def manifest() -> dict:
-    """What the page loads: the model names and every shader file (paths under shaders/)."""
+    """What the page loads: the model names, every shader file (paths under shaders/),
+    the lab's constants and the shipped presets."""
     files = sorted(p.relative_to(SHADER_DIR).as_posix() for p in SHADER_DIR.rglob("*.glsl"))
     return {
         "models": model_names(),
         "files": files,
         "constants": constants.as_dict(),
         "views": views.manifest(),
+        "presets": presets(),
     }
 
 

@@ -9,16 +9,19 @@ uniform vec3 u_ambient;
 uniform bool u_multiply_cos;
 out vec4 frag_color;
 
-// Sky above the horizon (y > 0), a checkered floor below it, and a sun.
+// Sky above the horizon (y > 0), a checkered floor below it, and a sun where light 1 is
+// (so dragging the light moves the sun's reflection in the mirror; fixed with no lights).
 vec3 lab_environment(vec3 d) {
+    vec3 sun_dir = LIGHT_COUNT > 0 ? u_light_dir[0] : normalize(vec3(0.4, 0.7, 0.6));
+    float sun = pow(max(dot(d, sun_dir), 0.0), 400.0);
+    vec3 sun_rgb = vec3(20.0, 18.0, 14.0) * (LIGHT_COUNT > 0 ? u_light_rgb[0] : vec3(1.0));
     if (d.y >= 0.0) {
         vec3 sky = mix(vec3(0.85, 0.9, 1.0), vec3(0.2, 0.4, 0.85), sqrt(d.y));
-        float sun = pow(max(dot(d, normalize(vec3(0.4, 0.7, 0.6))), 0.0), 400.0);
-        return sky + vec3(20.0, 18.0, 14.0) * sun;
+        return sky + sun_rgb * sun;
     }
     vec2 floor_point = d.xz / max(-d.y, 0.05);
     float check = mod(floor(floor_point.x) + floor(floor_point.y), 2.0);
-    return mix(vec3(0.1), vec3(0.6), check) * (0.4 + 0.6 * min(-d.y * 4.0, 1.0));
+    return mix(vec3(0.1), vec3(0.6), check) * (0.4 + 0.6 * min(-d.y * 4.0, 1.0)) + sun_rgb * sun;
 }
 
 void main() {

@@ -42,7 +42,7 @@ const lab = {
   panels: [],
   // Directional lights in camera space (theta 0: at the eye); the polar plot shows the
   // plane of incidence of the first. Ambient is radiance added everywhere on the sphere.
-  lights: [{ theta: 45, phi: 0, rgb: [1, 1, 1] }],
+  lights: [{ theta: 45, phi: 0, rgb: [1, 1, 1] }], // DEFAULT_LIGHT
   ambient: [0, 0, 0],
   active: 0, // the light that dragging on a sphere moves
   get light() {
@@ -53,8 +53,10 @@ const lab = {
   cosWeighted: false,
   embed: false,
   notes: [],
+  presets: [], // the desktop lab's presets (lab/app/presets/*.toml), from the manifest
   firstRenderMs: null,
 };
+const DEFAULT_LIGHT = { theta: 45, phi: 0, rgb: [1, 1, 1] };
 
 const $ = (selector, root = document) => root.querySelector(selector);
 function el(tag, attrs = {}, ...children) {
@@ -114,6 +116,27 @@ function parseValue(p, text) {
 }
 const toHex = (rgb) => "#" + rgb.map((c) => Math.round(Math.min(Math.max(c, 0), 1) * 255).toString(16).padStart(2, "0")).join("");
 const fromHex = (hex) => [1, 3, 5].map((i) => round(parseInt(hex.slice(i, i + 2), 16) / 255));
+
+/** Downloads a canvas as a PNG file (what is on screen: exposure and sRGB applied). */
+function savePng(canvas, filename) {
+  canvas.toBlob((blob) => {
+    const a = el("a", { href: URL.createObjectURL(blob), download: filename });
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  }, "image/png");
+}
+
+/** A canvas in a box with its own "PNG" button. */
+function viewBox(canvas, what, filename) {
+  const button = el("button", { type: "button", class: "png", title: `save the ${what} as a PNG image` }, "PNG");
+  button.addEventListener("click", () => savePng(canvas, filename()));
+  return el("div", { class: "view", "data-view": what }, canvas, button);
+}
+
+/** The short name of a model for pickers: its title up to the first colon. */
+const shortTitle = (model, name) => (model?.title ? model.title.split(":")[0].trim() : name);
 
 // -- GL helpers ---------------------------------------------------------------------------
 class CompileFailure extends Error {
@@ -202,7 +225,9 @@ class Panel {
     this.controls = el("div", { class: "controls" });
     this.formula = el("div", { class: "formula" });
     // Controls right under the pictures they change; the formula after them.
-    this.root.append(el("header", {}, this.picker, this.closeButton), this.canvas, this.polar,
+    const file = (what) => () => `${this.name}_${what}.png`;
+    this.root.append(el("header", {}, this.picker, this.closeButton),
+      viewBox(this.canvas, "sphere", file("sphere")), viewBox(this.polar, "polar plot", file("polar")),
       this.errorBox, this.controls, this.formula);
     this.gl = this.canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
     if (!this.gl) {
@@ -230,13 +255,22 @@ class Panel {
 
   /** CSS size of the sphere (and the polar plot's width); the render keeps lab.size. */
   displaySize(px) {
-    this.canvas.style.width = this.canvas.style.height = `${px}px`;
+    // Never wider than the panel (phones): the canvases' height follows their aspect.
+    this.canvas.style.width = `${px}px`;
     this.polar.style.width = `${px}px`;
   }
 
   fillPicker() {
-    this.picker.replaceChildren(...lab.order.map((n) => el("option", { value: n }, n)));
+    this.picker.replaceChildren(...lab.order.map((n) => el("option", { value: n, title: lab.models[n]?.title || n },
+      shortTitle(lab.models[n], n))));
     this.picker.value = this.name;
+  }
+
+  /** Gives the WebGL context back at once (browsers keep only a few alive). */
+  destroy() {
+    this.gl?.getExtension("WEBGL_lose_context")?.loseContext();
+    this.gl = null;
+    this.root.remove();
   }
 
   setModel(name, values = {}) {
@@ -668,8 +702,10 @@ function buildLights() {
     const row = el("span", { class: "light-row group", "data-light": i,
       title: lab.lights.length > 1 ? "dragging on a sphere moves the framed light: click a row to choose" : "" },
       el("span", { class: "light-name" }, lab.lights.length > 1 ? `light ${i + 1}` : "light"),
-      el("label", { title: thetaTip }, "θi ", theta), el("span", { class: "theta-text deg" }),
-      el("label", { title: phiTip }, "φi ", phi), el("span", { class: "phi-text deg" }), color);
+      el("label", { title: thetaTip }, el("span", { class: "name" }, "θi"), " ", theta),
+      el("span", { class: "theta-text deg" }),
+      el("label", { title: phiTip }, el("span", { class: "name" }, "φi"), " ", phi),
+      el("span", { class: "phi-text deg" }), color);
     if (!first) {
       row.append(el("button", { type: "button", class: "close", title: "remove this light",
         onclick: () => {
@@ -744,7 +780,7 @@ function addPanel(name, values) {
 function removePanel(panel) {
   if (lab.panels.length <= 1) return;
   lab.panels.splice(lab.panels.indexOf(panel), 1);
-  panel.root.remove();
+  panel.destroy();
   showAddModel();
   fitEmbed();
   scheduleRender();
@@ -759,6 +795,12 @@ function parseRgb(text) {
 }
 
 function readHash() {
+  // An address holds the whole state: what it leaves out has its default.
+  lab.lights = [{ ...DEFAULT_LIGHT, rgb: [...DEFAULT_LIGHT.rgb] }];
+  lab.ambient = [0, 0, 0];
+  lab.exposure = 0;
+  lab.cosWeighted = false;
+  lab.active = 0;
   const params = new URLSearchParams(location.hash.slice(1));
   const panels = [];
   const lights = [];
@@ -777,7 +819,10 @@ function readHash() {
       if (rgb) lab.ambient = rgb;
       else lab.notes.push(`ambient=${value}: write R,G,B (each 0 or more)`);
     } else if (key === "exposure") lab.exposure = Number(value) || 0;
-    else if (key === "size") lab.size = Math.min(Math.max(Math.round(Number(value)) || 384, 32), 1024);
+    else if (key === "size" && lab.panels.length) {
+      // The float targets have their size: a new size needs a reload.
+      if (Math.round(Number(value)) !== lab.size) lab.notes.push("size=: reload the page to change the render size");
+    } else if (key === "size") lab.size = Math.min(Math.max(Math.round(Number(value)) || 384, 32), 1024);
     else if (key === "embed") lab.embed = value !== "0";
     else if (key === "cos") lab.cosWeighted = value !== "0";
     else if (panels.length) panels[panels.length - 1].values[key] = value;
@@ -835,6 +880,76 @@ function writeHash() {
   history.replaceState(null, "", `#${parts.join("&")}`);
 }
 
+/** The address of a desktop preset: its models (library names) and light settings; what the
+ * page cannot show yet is listed in `skipped`. */
+export function presetHash(preset, skipped = []) {
+  const s = preset.settings || {};
+  const parts = [];
+  for (const entry of preset.model || []) {
+    if (!lab.models[entry.model]) {
+      skipped.push(`${entry.label || entry.model}: ${entry.model} opens in the desktop lab only`);
+      continue;
+    }
+    parts.push(`model=${entry.model}`);
+    for (const [k, v] of Object.entries(entry.values || {})) {
+      parts.push(`${k}=${Array.isArray(v) ? v.map(formatG).join(",") : typeof v === "boolean" ? Number(v) : v}`);
+    }
+  }
+  parts.push(`light=${formatG(s.theta_i ?? 30)},${formatG(s.phi_i ?? 0)}`);
+  if (s.exposure) parts.push(`exposure=${formatG(s.exposure)}`);
+  if (s.polar_cos) parts.push("cos=1");
+  if (typeof s.ambient === "number" && s.ambient > 0) parts.push(`ambient=${formatG(s.ambient)}`);
+  if (lab.size !== 384) parts.push(`size=${lab.size}`);
+  if (lab.embed) parts.push("embed=1");
+  return parts.join("&");
+}
+
+function applyPreset(index) {
+  const preset = lab.presets[index];
+  if (!preset) return;
+  const skipped = [];
+  const hash = presetHash(preset, skipped);
+  const notes = $("#preset-notes");
+  notes.textContent = `${preset.title || preset.file}${preset.notes ? ": " + preset.notes : ""}`;
+  notes.hidden = false;
+  applyHash(hash, skipped);
+}
+
+/** Shows the state of an address (typed into the address bar, a link or a preset). */
+function applyHash(hash = location.hash.slice(1), extraNotes = []) {
+  if (`#${hash}` !== location.hash) history.replaceState(null, "", `#${hash}`);
+  lab.notes = [];
+  const panels = readHash();
+  lab.notes.push(...extraNotes);
+  if (!panels.length) panels.push({ name: defaultModel(), values: {} });
+  while (lab.panels.length) lab.panels.pop().destroy();
+  for (const p of panels) addPanel(p.name, p.values);
+  showNotes();
+  showToolbar();
+  buildLights();
+  fitEmbed();
+  if (pending) cancelAnimationFrame(pending);
+  pending = 0;
+  renderNow();
+  writeHash();
+}
+
+/** Every parameter back to its default, one white light, no ambient; the models stay. */
+function reset() {
+  lab.lights = [{ ...DEFAULT_LIGHT, rgb: [...DEFAULT_LIGHT.rgb] }];
+  lab.ambient = [0, 0, 0];
+  lab.exposure = 0;
+  lab.cosWeighted = false;
+  lab.active = 0;
+  for (const panel of lab.panels) panel.setModel(panel.name);
+  $("#preset").value = "";
+  $("#preset-notes").hidden = true;
+  showToolbar();
+  buildLights();
+  renderNow();
+  writeHash();
+}
+
 // -- loading --------------------------------------------------------------------------------
 async function fetchText(path) {
   const response = await fetch(path);
@@ -859,6 +974,7 @@ function addModelText(label, code, expectedName = null) {
 async function load() {
   const manifest = JSON.parse(await fetchText("manifest.json"));
   Object.assign(C, manifest.constants);
+  lab.presets = manifest.presets || [];
   const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
   manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
   for (const name of manifest.models) addModelText(`shaders/brdfs/${name}.glsl`, lab.files[`brdfs/${name}.glsl`], name);
@@ -885,22 +1001,42 @@ function forwardSlideKeys() {
   });
 }
 
+const showExposure = () => {
+  $("#exposure-text").textContent = `×${formatG(round(Math.pow(2, lab.exposure)))}`;
+};
+
+/** The page-wide controls show the state (after an address or a preset changed it). */
+function showToolbar() {
+  showAmbient();
+  $("#exposure").value = lab.exposure;
+  showExposure();
+  $("#cos-weighted").checked = lab.cosWeighted;
+}
+
+function showNotes() {
+  $("#notes").textContent = lab.notes.join("\n");
+  $("#notes").hidden = !lab.notes.length;
+}
+
+const defaultModel = () => (lab.order.includes("phong") ? "phong" : lab.order[0]);
+
+/** Help on tap: a label's meaning (its title) in a box at the bottom of the screen, for
+ * phones and tablets, which show no tooltips. */
+function showTip(text) {
+  $("#tip-text").textContent = text;
+  $("#tip").hidden = !text;
+}
+
 function buildPage() {
   document.body.classList.toggle("embed", lab.embed);
   if (lab.embed) forwardSlideKeys();
   $("#add-light").addEventListener("click", () => addLight());
-  showAmbient();
   $("#ambient").addEventListener("input", (e) => {
     const level = Number(e.target.value);
     lab.ambient = [level, level, level];
     showAmbient();
     scheduleRender();
   });
-  const showExposure = () => {
-    $("#exposure-text").textContent = `×${formatG(round(Math.pow(2, lab.exposure)))}`;
-  };
-  $("#exposure").value = lab.exposure;
-  showExposure();
   $("#exposure").addEventListener("input", (e) => {
     lab.exposure = Number(e.target.value);
     showExposure();
@@ -910,7 +1046,6 @@ function buildPage() {
     fitEmbed();
     scheduleRender();
   });
-  $("#cos-weighted").checked = lab.cosWeighted;
   $("#cos-weighted").addEventListener("change", (e) => {
     lab.cosWeighted = e.target.checked;
     scheduleRender();
@@ -927,6 +1062,18 @@ function buildPage() {
     }
     scheduleRender();
   });
+  $("#preset").append(...lab.presets.map((p, i) => el("option", { value: i }, p.title || p.file)));
+  $("#preset").addEventListener("change", (e) => e.target.value !== "" && applyPreset(Number(e.target.value)));
+  $("#reset").addEventListener("click", reset);
+  $("#tip button").addEventListener("click", () => showTip(""));
+  // A tap (or click) on a label's words shows its meaning; a tap on its slider does not.
+  document.addEventListener("click", (e) => {
+    const label = e.target.closest?.("label[title], .param[title], .light-name");
+    if (!label || e.target.closest("input, select, button")) return;
+    const text = label.title || label.closest("[title]")?.title || "";
+    if (text) showTip(text);
+  });
+  addEventListener("hashchange", () => applyHash());
 }
 
 /** Renders every panel now and waits until the GPU is done; returns milliseconds. */
@@ -941,10 +1088,10 @@ async function main() {
   await load();
   const panels = readHash();
   buildPage();
-  if (!panels.length) panels.push({ name: lab.order.includes("phong") ? "phong" : lab.order[0], values: {} });
+  showToolbar();
+  if (!panels.length) panels.push({ name: defaultModel(), values: {} });
   for (const p of panels) addPanel(p.name, p.values);
-  $("#notes").textContent = lab.notes.join("\n");
-  $("#notes").hidden = !lab.notes.length;
+  showNotes();
   buildLights();
   fitEmbed();
   if (pending) cancelAnimationFrame(pending);
@@ -997,6 +1144,12 @@ window.brdfLab = {
   values: (i = 0) => ({ ...lab.panels[i].values }),
   errors: (i = 0) => lab.panels[i].error,
   notes: () => lab.notes.slice(),
+  applyPreset: (i) => applyPreset(i),
+  presetHash: (preset) => {
+    const skipped = [];
+    return { hash: presetHash(preset, skipped), skipped };
+  },
+  reset,
   moveSlider(i, name, position) {
     const value = lab.panels[i].moveSlider(name, position);
     renderNow();
