@@ -26,3 +26,19 @@ float angle_from_cos(float c) {
     c = clamp(c, -1.0, 1.0);
     return precise_atan(sqrt(max(1.0 - c * c, 0.0)), c);
 }
+
+// (cos t, sin t) by Taylor series, to float precision on every GPU: some built-in sin and
+// cos are coarse (SwiftShader: 1e-4), which sharp lobes amplify into visible differences
+// between two renderers of the same view (the views use it to make their directions).
+vec2 lab_cos_sin(float angle) {
+    float wrapped = mod(angle + PI, 2.0 * PI) - PI;  // [-pi, pi)
+    float t = abs(wrapped);
+    bool far_half = t > 0.5 * PI;
+    float x = far_half ? PI - t : t;
+    float x2 = x * x;
+    float s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0
+        * (1.0 - x2 / 110.0 * (1.0 - x2 / 156.0))))));
+    float c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0
+        * (1.0 - x2 / 90.0 * (1.0 - x2 / 132.0 * (1.0 - x2 / 182.0))))));
+    return vec2(far_half ? -c : c, wrapped < 0.0 ? -s : s);
+}

@@ -18,7 +18,9 @@ out vec4 frag_color;
 void sv_assign(float sv_amount, vec3 sv_albedo);
 
 mat3 lab_object_rotation() {
-    float cy = cos(u_yaw), sy = sin(u_yaw), cp = cos(u_pitch), sp = sin(u_pitch);
+    vec2 y = lab_cos_sin(u_yaw);
+    vec2 p = lab_cos_sin(u_pitch);
+    float cy = y.x, sy = y.y, cp = p.x, sp = p.y;
     mat3 yaw = mat3(cy, 0.0, -sy, 0.0, 1.0, 0.0, sy, 0.0, cy);
     mat3 pitch = mat3(1.0, 0.0, 0.0, 0.0, cp, sp, 0.0, -sp, cp);
     return pitch * yaw;
@@ -28,7 +30,9 @@ float lab_shape_distance(vec3 p) {
     if (u_shape == 0) return length(vec2(length(p.xz) - 0.72, p.y)) - 0.3;
     if (u_shape == 2) return length(max(abs(p) - vec3(0.5), 0.0)) - 0.2;
     float r = length(p) - 0.85;
-    if (u_shape == 3) r += 0.06 * sin(9.0 * p.x) * sin(9.0 * p.y) * sin(9.0 * p.z);
+    if (u_shape == 3) {
+        r += 0.06 * lab_cos_sin(9.0 * p.x).y * lab_cos_sin(9.0 * p.y).y * lab_cos_sin(9.0 * p.z).y;
+    }
     return r;
 }
 
@@ -41,12 +45,12 @@ vec3 lab_shape_normal(vec3 p) {
 
 // Texture coordinates: around the torus' two circles, or longitude/latitude.
 vec2 lab_shape_uv(vec3 p) {
-    float u = atan(p.z, p.x) / (2.0 * PI) + 0.5;
+    float u = precise_atan(p.z, p.x) / (2.0 * PI) + 0.5;
     if (u_shape == 0) {
         vec2 q = vec2(length(p.xz) - 0.72, p.y);
-        return vec2(u, atan(q.y, q.x) / (2.0 * PI) + 0.5);
+        return vec2(u, precise_atan(q.y, q.x) / (2.0 * PI) + 0.5);
     }
-    return vec2(u, acos(clamp(p.y / max(length(p), 1e-6), -1.0, 1.0)) / PI);
+    return vec2(u, angle_from_cos(p.y / max(length(p), 1e-6)) / PI);
 }
 
 // Procedural maps: a two-colour tiled albedo and wavy bands that vary the other parameters.
@@ -56,7 +60,8 @@ vec3 lab_albedo_map(vec2 uv) {
 }
 
 float lab_vary_map(vec2 uv) {
-    float s = 0.5 + 0.5 * sin(2.0 * PI * (uv.x * 5.0 + 0.4 * sin(2.0 * PI * uv.y * 3.0)));
+    float wave = lab_cos_sin(2.0 * PI * uv.y * 3.0).y;
+    float s = 0.5 + 0.5 * lab_cos_sin(2.0 * PI * (uv.x * 5.0 + 0.4 * wave)).y;
     return smoothstep(0.3, 0.7, s);
 }
 
@@ -87,6 +92,10 @@ void main() {
         frag_color = vec4(0.0);
         return;
     }
+    // Two more steps put the hit on the surface itself, not anywhere within the 5e-4 of the
+    // loop's test: the shading then no longer depends on where the march happened to stop.
+    t += lab_shape_distance(o + t * d);
+    t += lab_shape_distance(o + t * d);
     vec3 q = o + t * d;
     vec3 n_obj = lab_shape_normal(q);
     vec3 x_obj = u_shape == 0 ? vec3(-q.z, 0.0, q.x) : cross(vec3(0.0, 1.0, 0.0), n_obj);

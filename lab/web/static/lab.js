@@ -2,11 +2,16 @@
 // per model, view and enum choice, assembled exactly as the desktop lab assembles them.
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
+import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
 const SLIDER_STEPS = 1000;
+// One colour per panel, in every view that overlays models (the desktop's first colours).
+const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
+// Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
+const SETTINGS = { phiD: 90, shape: 0, mode: 1, yaw: 0.6, pitch: 0.5, polarLog: false, phiO: 0 };
 
 const DISPLAY_SHADER = `#version 300 es
 precision highp float;
@@ -53,6 +58,8 @@ const lab = {
   cosWeighted: false,
   embed: false,
   notes: [],
+  views: [], // shown besides the sphere and the polar plot: keys of VIEWS, in that order
+  ...SETTINGS,
   presets: [], // the desktop lab's presets (lab/app/presets/*.toml), from the manifest
   firstRenderMs: null,
 };
@@ -167,13 +174,30 @@ function compile(gl, fragmentText, source) {
   gl.deleteShader(vs);
   gl.deleteShader(fs);
   const uniforms = {};
+  const types = {};
   const count = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
   for (let i = 0; i < count; i++) {
     const info = gl.getActiveUniform(program, i);
     const name = info.name.replace(/\[0\]$/, "");
     uniforms[name] = gl.getUniformLocation(program, info.name);
+    types[name] = info.type;
   }
-  return { program, uniforms };
+  return { program, uniforms, types };
+}
+
+/** Sets a uniform the program uses (others the driver dropped are skipped), by its type. */
+function setUniform(gl, compiled, name, value) {
+  const location = compiled.uniforms[name];
+  if (location === undefined) return;
+  const flat = Array.isArray(value) ? value.flat() : value;
+  switch (compiled.types[name]) {
+    case gl.FLOAT: Array.isArray(flat) ? gl.uniform1fv(location, flat) : gl.uniform1f(location, flat); break;
+    case gl.FLOAT_VEC2: gl.uniform2fv(location, flat); break;
+    case gl.FLOAT_VEC3: gl.uniform3fv(location, flat); break;
+    case gl.FLOAT_VEC4: gl.uniform4fv(location, flat); break;
+    case gl.INT_VEC2: gl.uniform2iv(location, flat); break;
+    default: gl.uniform1i(location, Number(flat)); // int, bool, samplers
+  }
 }
 
 function floatTarget(gl, width, height) {
@@ -205,6 +229,7 @@ class Panel {
   constructor(name, values = {}) {
     this.root = el("section", { class: "panel" });
     this.programs = new Map();
+    this.extra = {}; // view name -> its view object (views.js)
     this.values = {};
     this.error = "";
     this.renders = 0;
@@ -222,13 +247,15 @@ class Panel {
     this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size / 2 + (lab.embed ? 34 : 28)) });
     this.displaySize(lab.size);
     this.errorBox = el("pre", { class: "errors", hidden: "" });
+    this.viewsBox = el("div", { class: "views" });
     this.controls = el("div", { class: "controls" });
     this.formula = el("div", { class: "formula" });
     // Controls right under the pictures they change; the formula after them.
     const file = (what) => () => `${this.name}_${what}.png`;
     this.root.append(el("header", {}, this.picker, this.closeButton),
-      viewBox(this.canvas, "sphere", file("sphere")), viewBox(this.polar, "polar plot", file("polar")),
-      this.errorBox, this.controls, this.formula);
+      el("div", { class: "views" }, viewBox(this.canvas, "sphere", file("sphere")),
+        viewBox(this.polar, "polar plot", file("polar"))),
+      this.viewsBox, this.errorBox, this.controls, this.formula);
     this.gl = this.canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
     if (!this.gl) {
       this.showError("this browser has no WebGL2");
@@ -241,6 +268,7 @@ class Panel {
     }
     const gl = this.gl;
     this.vao = gl.createVertexArray();
+    this.targets = new Map(); // float render targets of the other views, by size
     this.target = floatTarget(gl, lab.size, lab.size);
     this.probeTarget = floatTarget(gl, POLAR_STEPS, 1);
     this.display = compile(gl, DISPLAY_SHADER, null);
@@ -258,6 +286,23 @@ class Panel {
     // Never wider than the panel (phones): the canvases' height follows their aspect.
     this.canvas.style.width = `${px}px`;
     this.polar.style.width = `${px}px`;
+    for (const view of Object.values(this.extra)) view.canvas.style.width = `${px}px`;
+  }
+
+  get color() {
+    return PALETTE[Math.max(lab.panels.indexOf(this), 0) % PALETTE.length];
+  }
+
+  /** Makes the panel show the page's chosen views (lab.views), in their order. */
+  syncViews() {
+    for (const name of Object.keys(this.extra)) {
+      if (!lab.views.includes(name)) delete this.extra[name];
+    }
+    for (const name of lab.views) {
+      if (!this.extra[name] && this.gl) this.extra[name] = new VIEWS[name](this, viewEnv);
+    }
+    this.viewsBox.replaceChildren(...lab.views.filter((n) => this.extra[n]).map((n) => this.extra[n].root));
+    this.displaySize(parseFloat(this.canvas.style.width) || lab.size);
   }
 
   fillPicker() {
@@ -382,22 +427,44 @@ class Panel {
     setLight((Math.acos(z) * 180) / Math.PI, (Math.atan2(y, x) * 180) / Math.PI);
   }
 
-  program(view) {
+  /** The compiled program of `view`; `transform(source, model)` may edit the assembled
+   * source first (the object view's spatially varying parameters). */
+  program(view, preamble = null, transform = null) {
     const enums = Object.fromEntries(this.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, this.values[p.name]]));
-    const lights = view === "sphere" ? lab.lights.length : 0;
-    const key = `${view}|${lights}|${JSON.stringify(enums)}`;
+    // The light count is a constant of the lit views, as on the desktop.
+    if (preamble === null) preamble = view === "sphere" ? `const int LIGHT_COUNT = ${lab.lights.length};` : "";
+    const key = `${view}|${preamble}|${JSON.stringify(enums)}`;
     if (!this.programs.has(key)) {
-      // The light count is a constant of the sphere view, as on the desktop.
-      const preamble = view === "sphere" ? `const int LIGHT_COUNT = ${lights};` : "";
       const source = assembleFragment(this.model, view, lab.files, { target: "300es", preamble, enums, constants: C });
+      if (transform) transform(source, this.model);
       this.programs.set(key, compile(this.gl, source.text, source));
     }
     return this.programs.get(key);
   }
 
-  setParams(gl, compiled) {
+  /** Draws `view` at width x height into a float target and reads it back (RGBA floats,
+   * row 0 at the bottom). `suffix` renames the parameter uniforms (NAME_base). */
+  run(view, width, height, uniforms, { preamble = "", transform = null, suffix = "" } = {}) {
+    const gl = this.gl;
+    const compiled = this.program(view, preamble, transform);
+    gl.useProgram(compiled.program);
+    gl.bindVertexArray(this.vao);
+    this.setParams(gl, compiled, suffix);
+    for (const [name, value] of Object.entries(uniforms)) setUniform(gl, compiled, name, value);
+    const key = `${width}x${height}`;
+    if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height));
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.targets.get(key).fbo);
+    gl.viewport(0, 0, width, height);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    const out = new Float32Array(width * height * 4);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return out;
+  }
+
+  setParams(gl, compiled, suffix = "") {
     for (const p of this.model.params) {
-      const location = compiled.uniforms[p.name];
+      const location = compiled.uniforms[p.name + suffix] ?? compiled.uniforms[p.name];
       if (location === undefined || p.kind === "enum") continue;
       const v = this.values[p.name];
       if (p.kind === "float") gl.uniform1f(location, v);
@@ -412,6 +479,7 @@ class Panel {
     try {
       this.renderSphere(gl);
       this.renderPolar(gl);
+      for (const name of lab.views) this.extra[name]?.render();
       this.showError("");
     } catch (err) {
       if (!(err instanceof CompileFailure || err instanceof ModelError)) throw err;
@@ -456,10 +524,11 @@ class Panel {
     const L = new Float32Array(4 * POLAR_STEPS);
     const V = new Float32Array(4 * POLAR_STEPS);
     const Ld = direction(theta, phi);
+    // The plane of the plot: the plane of incidence turned by phi_o about the normal.
     for (let i = 0; i < POLAR_STEPS; i++) {
       const thetaO = i - 90; // positive: the far side from the light (the mirror side)
       L.set(Ld, 4 * i);
-      V.set(direction(Math.abs(thetaO), thetaO >= 0 ? phi + 180 : phi), 4 * i);
+      V.set(direction(Math.abs(thetaO), (thetaO >= 0 ? phi + 180 : phi) + lab.phiO), 4 * i);
     }
     const compiled = this.program("probe");
     const textures = [floatTexture(gl, POLAR_STEPS, L), floatTexture(gl, POLAR_STEPS, V)];
@@ -480,8 +549,8 @@ class Panel {
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     textures.forEach((t) => gl.deleteTexture(t));
     this.lobe = out;
-    this.spike = this.model.delta ? this.deltaReflectance(gl, theta, phi) : null;
-    this.polarGeometry = drawPolar(this.polar, out, theta, this.spike);
+    // The spike leaves the plot's plane when it is turned.
+    this.spike = this.model.delta && lab.phiO === 0 ? this.deltaReflectance(gl, theta, phi) : null;
   }
 
   /** The reflectance (RGB) of a delta model's spike, read back from its DELTA_REFLECTANCE:
@@ -523,9 +592,44 @@ class Panel {
 
 const luma = (r, g, b) => C.LUMA[0] * r + C.LUMA[1] * g + C.LUMA[2] * b;
 
-/** The lobe (luminance of f_r) on a half disc, 0 deg = the normal; `spike`: the RGB
- * reflectance of a delta model's spike, drawn at the mirror angle with that length. */
-function drawPolar(canvas, values, thetaI, spike) {
+/** A panel's lobe as plotted: luminance of f_r (times cos θo when asked), its peak away from
+ * grazing (where some models diverge) and its delta spike's luminance. */
+function lobeLuminance(panel) {
+  const values = panel.lobe;
+  const lum = [];
+  let peak = 0;
+  for (let i = 0; i < POLAR_STEPS; i++) {
+    let f = luma(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+    if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
+    f = Number.isFinite(f) ? Math.max(f, 0) : 0;
+    lum.push(f);
+    if (Math.abs(i - 90) <= C.GRAZING_DEG) peak = Math.max(peak, f);
+  }
+  return { lum, peak, spike: panel.spike ? luma(...panel.spike) : null, color: panel.color, name: panel.name };
+}
+
+/** Every polar plot on one scale: each panel's, and all models overlaid when there are
+ * several. The outer circle is the largest peak; with a delta spike at least 1, so a
+ * spike's length is its reflectance (the whole circle = all the light). */
+function drawPolars() {
+  const curves = lab.panels.filter((p) => p.lobe && p.model).map((p) => [p, lobeLuminance(p)]);
+  const scale = Math.max(0, ...curves.map(([, c]) => (c.spike !== null ? Math.max(c.peak, 1) : c.peak)));
+  const theta = lab.lights[0].theta;
+  for (const [panel, curve] of curves) panel.polarGeometry = drawPolar(panel.polar, [curve], theta, scale);
+  const overlay = $("#overlay");
+  overlay.hidden = curves.length < 2;
+  if (!overlay.hidden) lab.overlayGeometry = drawPolar($("#overlay canvas"), curves.map(([, c]) => c), theta, scale, true);
+}
+
+/** Radius (0..1 of the plot's) of value f on a scale whose outer circle is `scale`. */
+function polarRadius(f, scale) {
+  if (!lab.polarLog) return Math.min(f / scale, 1);
+  const floor = scale * Math.pow(10, -C.PLOT_DECADES);
+  return Math.min(Math.max(Math.log10(Math.max(f, floor) / floor), 0) / C.PLOT_DECADES, 1);
+}
+
+/** Lobes on a half disc, 0 deg = the normal, rings labelled with their values. */
+function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   const ctx = canvas.getContext("2d");
   const w = canvas.width;
   const h = canvas.height;
@@ -538,9 +642,16 @@ function drawPolar(canvas, values, thetaI, spike) {
   ctx.clearRect(0, 0, w, h);
   ctx.font = `${font}px system-ui, sans-serif`;
   ctx.lineWidth = 1;
+  const at = (angleDeg, r) => {
+    const a = (angleDeg * Math.PI) / 180;
+    return [cx + r * Math.sin(a), cy - r * Math.cos(a)];
+  };
+  // Rings: quarters of the scale, or one per decade on the log scale; values beside them.
+  const rings = lab.polarLog
+    ? Array.from({ length: C.PLOT_DECADES }, (_, k) => [(C.PLOT_DECADES - k) / C.PLOT_DECADES, scale * Math.pow(10, -k)])
+    : [0.25, 0.5, 0.75, 1].map((r) => [r, r * scale]);
   ctx.strokeStyle = "#8888";
   ctx.beginPath();
-  ctx.arc(cx, cy, radius, Math.PI, 2 * Math.PI);
   ctx.moveTo(cx - radius, cy);
   ctx.lineTo(cx + radius, cy);
   ctx.moveTo(cx, cy);
@@ -552,6 +663,16 @@ function drawPolar(canvas, values, thetaI, spike) {
     const a = (angleDeg * Math.PI) / 180;
     return [cx - r * Math.sin(a), cy - r * Math.cos(a)];
   };
+  ctx.fillStyle = "#999";
+  ctx.font = `${Math.round(font * 0.85)}px system-ui, sans-serif`;
+  for (const [r, value] of rings) {
+    ctx.strokeStyle = r === 1 ? "#8888" : "#5556";
+    ctx.beginPath();
+    ctx.arc(cx, cy, radius * r, Math.PI, 2 * Math.PI);
+    ctx.stroke();
+    if (scale > 0 && (r >= 0.5 || lab.polarLog)) ctx.fillText(formatG(Number(value.toPrecision(2))), cx + radius * r + 2, cy - 3);
+  }
+  ctx.font = `${font}px system-ui, sans-serif`;
   const ray = (angleDeg, r, color, dash) => {
     ctx.strokeStyle = color;
     ctx.setLineDash(dash);
@@ -570,75 +691,86 @@ function drawPolar(canvas, values, thetaI, spike) {
     ctx.textAlign = "left";
     ctx.textBaseline = "alphabetic";
   };
-  ray(-thetaI, radius, "#e0a030", []); // toward the light
-  ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
-  // Near normal incidence L and R would sit on N: then only L and R, either side.
+  const inPlane = lab.phiO === 0;
+  if (inPlane) {
+    ray(-thetaI, radius, "#e0a030", []); // toward the light
+    ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
+  }
   // Near normal incidence L and R sit on N: one merged label instead of three on top of
   // each other; a little further out, L and R pushed apart either side.
-  if (thetaI < 4) label("N = L = R", 0, radius + 0.7 * font, "#e0a030");
+  if (!inPlane) label("N", 0, radius + 0.7 * font, "#aaa");
+  else if (thetaI < 4) label("N = L = R", 0, radius + 0.7 * font, "#e0a030");
   else {
     if (thetaI >= 12) label("N", 0, radius + 0.7 * font, "#aaa");
     label("L", -thetaI, radius + 0.8 * font, "#e0a030", thetaI < 12 ? 0.6 * font : 0);
     label("R", thetaI, radius + 0.8 * font, "#aaa", thetaI < 12 ? -0.6 * font : 0);
   }
-  const lum = [];
-  let peak = 0;
-  for (let i = 0; i < POLAR_STEPS; i++) {
-    let f = luma(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
-    if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
-    f = Number.isFinite(f) ? Math.max(f, 0) : 0;
-    lum.push(f);
-    if (Math.abs(i - 90) <= C.GRAZING_DEG) peak = Math.max(peak, f);
-  }
-  // The outer circle: the lobe's peak; with a delta spike at least 1, so the spike's length
-  // is its reflectance (the whole circle = all the light).
-  const spikeLum = spike ? luma(...spike) : 0;
-  const scale = spike ? Math.max(peak, 1) : peak;
   const what = lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ";
   ctx.fillStyle = "#bbb";
-  const title = `${what}, plane of incidence${lab.lights.length > 1 ? " of light 1" : ""}`;
+  const plane = inPlane ? "plane of incidence" : `plane turned φo = ${formatG(lab.phiO)}°`;
+  const title = `${what}, ${plane}${lab.lights.length > 1 ? " of light 1" : ""}`;
   ctx.fillText(ctx.measureText(title).width < w - 4 ? title : `${what}, light 1`, 2, font);
-  const circle = spike && peak < 1 ? "1 (all the light)" : `${formatG(round(peak))} sr⁻¹`;
+  const spikes = curves.some((c) => c.spike !== null);
+  const peak = Math.max(0, ...curves.map((c) => c.peak));
+  const circle = spikes && peak < 1 ? "1 (all the light)" : `${formatG(round(scale))} sr⁻¹`;
+  const log = lab.polarLog ? `, log: ${C.PLOT_DECADES} decades` : "";
   // The shared rule (lab/plotscale.py): grazing values beyond GRAZING_DEG stay out of the
   // scale; what exceeds it is drawn at the rim, marked, and its largest value named.
-  const over = lum.map((f, i) => (peak > 0 && f > scale * (1 + 1e-6) ? i : -1)).filter((i) => i >= 0);
-  const clippedMax = over.length ? Math.max(...over.map((i) => lum[i])) : 0;
+  const over = [];
+  for (const curve of curves) {
+    curve.lum.forEach((f, i) => scale > 0 && f > scale * (1 + 1e-6) && over.push([curve, i]));
+  }
+  const clippedMax = over.length ? Math.max(...over.map(([c, i]) => c.lum[i])) : 0;
   const clipped = over.length ? `; ▼ clipped: up to ${formatG(round(clippedMax))} sr⁻¹` : "";
-  ctx.fillText(peak > 0 || spike ? `outer circle: ${circle}${clipped}` : "fᵣ = 0 in this plane", 2, 2.2 * font);
-  if (peak > 0) {
-    ctx.strokeStyle = "#4aa3ff";
-    ctx.fillStyle = "#4aa3ff33";
-    ctx.lineWidth = 2;
-    ctx.beginPath();
-    ctx.moveTo(cx, cy);
-    lum.forEach((f, i) => ctx.lineTo(...at(i - 90, radius * Math.min(f / scale, 1))));
-    ctx.closePath();
-    ctx.fill();
-    ctx.stroke();
-    ctx.fillStyle = "#dc283c";
-    for (const i of over) {
-      const [x, y] = at(i - 90, radius);
+  ctx.fillText(scale > 0 ? `outer circle: ${circle}${log}${clipped}` : "fᵣ = 0 in this plane", 2, 2.2 * font);
+  let spikeLength = 0;
+  for (const curve of curves) {
+    if (curve.peak > 0 || curve.lum.some((f) => f > 0)) {
+      ctx.strokeStyle = curve.color;
+      ctx.fillStyle = `${curve.color}33`;
+      ctx.lineWidth = 2;
       ctx.beginPath();
-      ctx.moveTo(x - 4, y - 6);
-      ctx.lineTo(x + 4, y - 6);
-      ctx.lineTo(x, y);
-      ctx.fill();
+      ctx.moveTo(cx, cy);
+      curve.lum.forEach((f, i) => ctx.lineTo(...at(i - 90, radius * polarRadius(f, scale))));
+      ctx.closePath();
+      if (curves.length === 1) ctx.fill();
+      ctx.stroke();
+    }
+    if (curve.spike !== null) {
+      ctx.lineWidth = 4;
+      spikeLength = radius * polarRadius(curve.spike, scale);
+      ray(thetaI, spikeLength, curves.length === 1 ? "#ff5a5a" : curve.color, []);
+      ctx.lineWidth = 1;
+      ctx.fillStyle = "#ff7a7a";
+      // Beside the spike's middle, kept inside the canvas.
+      const text = `δ spike, ρ = ${formatG(round(curve.spike))}`;
+      const [x, y] = at(thetaI, spikeLength * 0.5);
+      const width = ctx.measureText(text).width;
+      ctx.fillText(text, Math.min(Math.max(x + 8, 2), w - width - 2), Math.max(y, 3.2 * font));
     }
   }
-  if (spike) {
-    ctx.lineWidth = 4;
-    const length = (radius * spikeLum) / scale;
-    ray(thetaI, length, "#ff5a5a", []);
-    ctx.lineWidth = 1;
-    ctx.fillStyle = "#ff7a7a";
-    // Beside the spike's middle, kept inside the canvas.
-    const text = `δ spike, ρ = ${formatG(round(spikeLum))}`;
-    const [x, y] = at(thetaI, length * 0.5);
-    const width = ctx.measureText(text).width;
-    ctx.fillText(text, Math.min(Math.max(x + 8, 2), w - width - 2), Math.max(y, 3.2 * font));
+  ctx.fillStyle = "#dc283c";
+  for (const [, i] of over) {
+    const [x, y] = at(i - 90, radius);
+    ctx.beginPath();
+    ctx.moveTo(x - 4, y - 6);
+    ctx.lineTo(x + 4, y - 6);
+    ctx.lineTo(x, y);
+    ctx.fill();
   }
-  return { radius, scale, spikeLength: spike ? (radius * spikeLum) / scale : 0 };
+  ctx.lineWidth = 1;
+  if (legend) {
+    curves.forEach((curve, k) => {
+      ctx.fillStyle = curve.color;
+      const text = curve.name;
+      ctx.fillText(text, w - ctx.measureText(text).width - 4, (k + 2.6) * 1.2 * font);
+    });
+  }
+  return { radius, scale, spikeLength };
 }
+
+// What views.js needs from the page.
+const viewEnv = { lab, C, el, viewBox, direction, scheduleRender: () => scheduleRender() };
 
 // -- page-level actions ---------------------------------------------------------------------
 let pending = 0;
@@ -652,6 +784,7 @@ function scheduleRender() {
 
 function renderAll() {
   for (const panel of lab.panels) panel.render();
+  drawPolars();
 }
 
 const clampTheta = (theta) => round(Math.min(Math.max(theta, 0), 90));
@@ -772,6 +905,7 @@ function addPanel(name, values) {
   const panel = new Panel(name, values);
   lab.panels.push(panel);
   $("#panels").append(panel.root);
+  panel.syncViews();
   showAddModel();
   fitEmbed();
   return panel;
@@ -801,6 +935,8 @@ function readHash() {
   lab.exposure = 0;
   lab.cosWeighted = false;
   lab.active = 0;
+  Object.assign(lab, SETTINGS);
+  lab.views = [];
   const params = new URLSearchParams(location.hash.slice(1));
   const panels = [];
   const lights = [];
@@ -825,6 +961,19 @@ function readHash() {
     } else if (key === "size") lab.size = Math.min(Math.max(Math.round(Number(value)) || 384, 32), 1024);
     else if (key === "embed") lab.embed = value !== "0";
     else if (key === "cos") lab.cosWeighted = value !== "0";
+    else if (key === "log") lab.polarLog = value !== "0";
+    else if (key === "views") {
+      const names = value.split(",").filter(Boolean);
+      const unknown = names.filter((n) => !VIEWS[n]);
+      if (unknown.length) lab.notes.push(`views=${value}: unknown ${unknown.join(", ")}; choose from ${Object.keys(VIEWS).join(", ")}`);
+      lab.views = Object.keys(VIEWS).filter((n) => names.includes(n));
+    } else if (key in HASH_SETTINGS) {
+      const [field, lo, hi] = HASH_SETTINGS[key];
+      const number = Number(value);
+      if (value === "" || !Number.isFinite(number) || number < lo || number > hi) {
+        lab.notes.push(`${key}=${value}: give a number from ${lo} to ${hi}`);
+      } else lab[field] = Number.isInteger(SETTINGS[field]) && field !== "yaw" && field !== "pitch" ? Math.round(number) : number;
+    }
     else if (panels.length) panels[panels.length - 1].values[key] = value;
     else lab.notes.push(`${key}=${value}: give model=NAME before its parameters`);
   }
@@ -876,9 +1025,18 @@ function writeHash() {
   if (lab.exposure) parts.push(`exposure=${formatG(lab.exposure)}`);
   if (lab.size !== 384) parts.push(`size=${lab.size}`);
   if (lab.cosWeighted) parts.push("cos=1");
+  if (lab.polarLog) parts.push("log=1");
+  if (lab.views.length) parts.push(`views=${lab.views.join(",")}`);
+  for (const [key, [field]] of Object.entries(HASH_SETTINGS)) {
+    if (lab[field] !== SETTINGS[field]) parts.push(`${key}=${formatG(round(lab[field]))}`);
+  }
   if (lab.embed) parts.push("embed=1");
   history.replaceState(null, "", `#${parts.join("&")}`);
 }
+
+// Address keys of the page settings: [field of lab, smallest, largest].
+const HASH_SETTINGS = { phid: ["phiD", 0, 180], phio: ["phiO", 0, 180], shape: ["shape", 0, 3],
+  mode: ["mode", 0, 3], yaw: ["yaw", -100, 100], pitch: ["pitch", -1.5, 1.5] };
 
 /** The address of a desktop preset: its models (library names) and light settings; what the
  * page cannot show yet is listed in `skipped`. */
@@ -898,6 +1056,11 @@ export function presetHash(preset, skipped = []) {
   parts.push(`light=${formatG(s.theta_i ?? 30)},${formatG(s.phi_i ?? 0)}`);
   if (s.exposure) parts.push(`exposure=${formatG(s.exposure)}`);
   if (s.polar_cos) parts.push("cos=1");
+  if (s.polar_log) parts.push("log=1");
+  const views = (preset.views || []).filter((v) => VIEWS[v]);
+  if (views.length) parts.push(`views=${views.join(",")}`);
+  const desktop = { phi_d: "phid", shape: "shape", mode: "mode", yaw: "yaw", pitch: "pitch" };
+  for (const [name, key] of Object.entries(desktop)) if (name in s) parts.push(`${key}=${s[name]}`);
   if (typeof s.ambient === "number" && s.ambient > 0) parts.push(`ambient=${formatG(s.ambient)}`);
   if (lab.size !== 384) parts.push(`size=${lab.size}`);
   if (lab.embed) parts.push("embed=1");
@@ -941,6 +1104,7 @@ function reset() {
   lab.exposure = 0;
   lab.cosWeighted = false;
   lab.active = 0;
+  Object.assign(lab, SETTINGS);
   for (const panel of lab.panels) panel.setModel(panel.name);
   $("#preset").value = "";
   $("#preset-notes").hidden = true;
@@ -1011,6 +1175,16 @@ function showToolbar() {
   $("#exposure").value = lab.exposure;
   showExposure();
   $("#cos-weighted").checked = lab.cosWeighted;
+  $("#polar-log").checked = lab.polarLog;
+  for (const [id, field] of [["phi-o", "phiO"], ["phi-d", "phiD"]]) {
+    $(`#${id}`).value = lab[field];
+    $(`#${id}-text`).textContent = `${formatG(lab[field])}°`;
+  }
+  $("#shape").value = lab.shape;
+  $("#mode").value = lab.mode;
+  document.querySelectorAll("#view-choice input").forEach((box) => (box.checked = lab.views.includes(box.value)));
+  for (const name of Object.keys(VIEWS)) document.body.classList.toggle(`with-${name}`, lab.views.includes(name));
+  lab.panels.forEach((panel) => panel.syncViews());
 }
 
 function showNotes() {
@@ -1062,6 +1236,30 @@ function buildPage() {
     }
     scheduleRender();
   });
+  $("#view-choice").append(...Object.entries(VIEW_TITLES).map(([name, title]) => {
+    const box = el("input", { type: "checkbox", value: name });
+    box.addEventListener("change", () => {
+      lab.views = Object.keys(VIEWS).filter((n) => (n === name ? box.checked : lab.views.includes(n)));
+      showToolbar();
+      scheduleRender();
+    });
+    return el("label", {}, box, ` ${title}`);
+  }));
+  $("#shape").append(...SHAPES.map((text, i) => el("option", { value: i }, text)));
+  $("#mode").append(...MODES.map((text, i) => el("option", { value: i }, `${i + 1}. ${text}`)));
+  const setting = (id, field, parse = Number) => $(`#${id}`).addEventListener("input", (e) => {
+    lab[field] = parse(e.target);
+    showToolbar();
+    scheduleRender();
+  });
+  setting("polar-log", "polarLog", (box) => box.checked);
+  setting("phi-o", "phiO", (input) => Number(input.value));
+  setting("phi-d", "phiD", (input) => Number(input.value));
+  setting("shape", "shape", (input) => Number(input.value));
+  setting("mode", "mode", (input) => Number(input.value));
+  $("#overlay").prepend(el("header", {}, "all models on one scale"));
+  $("#overlay .view").append(el("button", { type: "button", class: "png", title: "save the overlaid polar plot as a PNG image",
+    onclick: () => savePng($("#overlay canvas"), "polar_all.png") }, "PNG"));
   $("#preset").append(...lab.presets.map((p, i) => el("option", { value: i }, p.title || p.file)));
   $("#preset").addEventListener("change", (e) => e.target.value !== "" && applyPreset(Number(e.target.value)));
   $("#reset").addEventListener("click", reset);
@@ -1162,6 +1360,27 @@ window.brdfLab = {
   },
   /** Polar probe values of panel i (181 x RGBA, theta_o = -90..90). */
   readLobe: (i = 0) => Array.from(lab.panels[i].lobe || []),
+  /** Another view of panel i: images as {width, height, data} (base64 float32 RGBA, row 0
+   * at the top); the albedo as {thetas, rgb, gain}. */
+  readView(i, name) {
+    const out = lab.panels[i].extra[name].read();
+    return out.data ? { ...out, data: toBase64(out.data) } : out;
+  },
+  /** Shows these views (keys of VIEWS) and renders. */
+  setViews(names) {
+    lab.views = Object.keys(VIEWS).filter((n) => names.includes(n));
+    showToolbar();
+    writeHash();
+    return renderNow();
+  },
+  /** Sets page settings ({phiD, phiO, shape, mode, yaw, pitch, polarLog}) and renders. */
+  setSettings(values) {
+    Object.assign(lab, values);
+    showToolbar();
+    writeHash();
+    return renderNow();
+  },
+  overlay: () => lab.overlayGeometry,
   /** The delta spike of panel i: its RGB reflectance (null for other models) and its
    * drawn length as a fraction of the polar plot's radius. */
   spike: (i = 0) => {
