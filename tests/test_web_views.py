@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from lab.constants import PLOT_DECADES
+from lab.constants import LUMA, PLOT_DECADES
 from lab.models import load_model
 from lab.render import Light, direction
 from lab.web.browser import chromium_path
@@ -102,7 +102,10 @@ def test_some_albedo_gains_energy(page):
 @pytest.mark.parametrize("mode", [0, 1, 2, 3])
 def test_lit_object_matches_desktop(page, app_renderer, mode, output_dir):
     """Two coloured lights and ambient, each step of the spatially varying lecture."""
-    lights = [{"theta": 40, "phi": 20, "rgb": [1, 0.9, 0.8]}, {"theta": 70, "phi": 200, "rgb": [0.3, 0.4, 1]}]
+    lights = [
+        {"theta": 40, "phi": 20, "rgb": [1, 0.9, 0.8]},
+        {"theta": 70, "phi": 200, "rgb": [0.3, 0.4, 1]},
+    ]
     ambient = [0.03, 0.03, 0.03]
     values = {"m": 0.3}
     page.evaluate("v => brdfLab.setModel(0, 'cook_torrance', v)", values)
@@ -158,10 +161,12 @@ def test_polar_out_of_plane_matches_probe(page, renderer):
 
 def test_models_share_one_polar_scale_with_a_log_option(page):
     page.evaluate("brdfLab.setModel(0, 'mirror', {rho_s: [0.9, 0.9, 0.9]})")
-    page.evaluate("() => { brdfLab.state.panels.length < 2 && document.querySelector('#add-model').click(); }")
+    page.evaluate(
+        "() => { brdfLab.state.panels.length < 2 && document.querySelector('#add-model').click(); }"
+    )
     page.evaluate("brdfLab.setModel(1, 'phong', {ks: [1, 1, 1], ke: 200})")
     peak = page.evaluate("brdfLab.state.panels.map(p => p.polarGeometry.scale)")
-    lobe = np.array(page.evaluate("brdfLab.readLobe(1)")).reshape(181, 4)[:, :3] @ [0.2126, 0.7152, 0.0722]
+    lobe = np.array(page.evaluate("brdfLab.readLobe(1)")).reshape(181, 4)[:, :3] @ LUMA
     assert peak[0] == peak[1] == pytest.approx(max(lobe.max(), 1.0), rel=1e-4)
     assert page.evaluate("brdfLab.overlay().scale") == peak[0]
     assert page.locator("#overlay").is_visible()
