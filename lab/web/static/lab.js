@@ -3,6 +3,7 @@
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
+import { ShaderEditor } from "./edit.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
@@ -243,6 +244,8 @@ class Panel {
       scheduleRender();
     } });
     this.closeButton = el("button", { class: "close", title: "remove this model", onclick: () => removePanel(this) }, "×");
+    this.editButton = el("button", { type: "button", class: "edit", title: "edit this model's GLSL file in the page",
+      onclick: () => openEditor(this) }, "edit");
     this.canvas = el("canvas", { class: "sphere", width: lab.size, height: lab.size });
     this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size / 2 + (lab.embed ? 34 : 28)) });
     this.displaySize(lab.size);
@@ -252,7 +255,7 @@ class Panel {
     this.formula = el("div", { class: "formula" });
     // Controls right under the pictures they change; the formula after them.
     const file = (what) => () => `${this.name}_${what}.png`;
-    this.root.append(el("header", {}, this.picker, this.closeButton),
+    this.root.append(el("header", {}, this.picker, el("span", {}, this.editButton, this.closeButton)),
       el("div", { class: "views" }, viewBox(this.canvas, "sphere", file("sphere")),
         viewBox(this.polar, "polar plot", file("polar"))),
       this.viewsBox, this.errorBox, this.controls, this.formula);
@@ -769,6 +772,50 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   return { radius, scale, spikeLength };
 }
 
+// -- the editor (edit.js) -------------------------------------------------------------------
+let editor = null;
+const originals = {}; // model name -> the text it came with (library file or opened file)
+
+/** Compiles the sphere program of `model` on the panel's context (throws CompileFailure). */
+function tryCompile(panel, model) {
+  if (!panel.gl) return;
+  const enums = Object.fromEntries(model.params.filter((p) => p.kind === "enum").map((p) => [p.name,
+    p.choices.includes(panel.values[p.name]) ? panel.values[p.name] : p.default]));
+  const source = assembleFragment(model, "sphere", lab.files, { target: "300es", enums, constants: C,
+    preamble: `const int LIGHT_COUNT = ${lab.lights.length};` });
+  panel.gl.deleteProgram(compile(panel.gl, source.text, source).program);
+}
+
+/** Shows an edited model that compiled in every panel of that name. A value the student
+ * set is kept where the parameter is still there with the same kind and range; one at the
+ * old default follows the file's new default. */
+function installModel(panel, model) {
+  lab.models[panel.name] = model;
+  delete lab.modelErrors[panel.name];
+  for (const other of lab.panels.filter((p) => p.name === panel.name)) {
+    const kept = {};
+    for (const p of model.params) {
+      const old = other.model?.params.find((q) => q.name === p.name);
+      const changed = old && JSON.stringify(other.values[p.name]) !== JSON.stringify(old.default);
+      if (changed && old.kind === p.kind && JSON.stringify(old.choices) === JSON.stringify(p.choices) &&
+        (p.kind !== "float" || (other.values[p.name] >= p.minimum && other.values[p.name] <= p.maximum))) {
+        kept[p.name] = other.values[p.name];
+      }
+    }
+    other.setModel(panel.name, kept);
+  }
+  lab.panels.forEach((p) => p.fillPicker());
+  scheduleRender();
+}
+
+function openEditor(panel) {
+  if (!editor) editor = new ShaderEditor($("#editor"), { lab, el, tryCompile, install: installModel });
+  const name = panel.name;
+  originals[name] ??= lab.files[`brdfs/${name}.glsl`] ?? panel.model?.code ?? "";
+  editor.open(panel, originals[name]);
+  $("#editor").scrollIntoView({ block: "nearest" });
+}
+
 // What views.js needs from the page.
 const viewEnv = { lab, C, el, viewBox, direction, scheduleRender: () => scheduleRender() };
 
@@ -913,6 +960,7 @@ function addPanel(name, values) {
 
 function removePanel(panel) {
   if (lab.panels.length <= 1) return;
+  if (editor?.panel === panel) editor.close();
   lab.panels.splice(lab.panels.indexOf(panel), 1);
   panel.destroy();
   showAddModel();
@@ -1343,6 +1391,14 @@ window.brdfLab = {
   errors: (i = 0) => lab.panels[i].error,
   notes: () => lab.notes.slice(),
   applyPreset: (i) => applyPreset(i),
+  /** Opens the editor on panel i; returns its API (text, setText, errors, check). */
+  edit(i = 0) {
+    openEditor(lab.panels[i]);
+    return true;
+  },
+  get editor() {
+    return editor;
+  },
   presetHash: (preset) => {
     const skipped = [];
     return { hash: presetHash(preset, skipped), skipped };
