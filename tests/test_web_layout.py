@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import io
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -185,7 +186,7 @@ def test_png_export_of_each_view(browser):
                 page.page.locator(f".view[data-view='{view}'] button.png").first.click()
             download = info.value
             assert download.suggested_filename == f"phong_{view.split()[0]}.png"
-            image = Image.open(io.BytesIO(open(download.path(), "rb").read()))
+            image = Image.open(io.BytesIO(Path(download.path()).read_bytes()))
             canvas = page.js(
                 "v => { const c = document.querySelector(`.view[data-view='${v}'] canvas`);"
                 " return [c.width, c.height]; }",

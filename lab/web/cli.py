@@ -80,7 +80,9 @@ def cmd_bench(args) -> int:
     from lab.web.browser import BrowserMissing
 
     try:
-        result = run(size=args.size, model=args.model, loads=args.loads, steps=args.steps)
+        result = run(
+            size=args.size, model=args.model, loads=args.loads, steps=args.steps, views=args.views
+        )
     except BrowserMissing as err:
         raise _usage_error(str(err)) from None
     print(result.report())
@@ -130,6 +132,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--model", default="phong")
     p.add_argument("--loads", type=int, default=3, help="page loads to time")
     p.add_argument("--steps", type=int, default=120, help="slider positions to time")
+    p.add_argument(
+        "--views",
+        default="slice,albedo,object",
+        help="views shown besides sphere and polar (comma-separated; '' for none)",
+    )
     p.set_defaults(func=cmd_bench)
 
     p = subparsers.add_parser("slides", help="the lecture deck: build it or print it to PDF")

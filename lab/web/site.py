@@ -14,6 +14,7 @@ from pathlib import Path
 from lab import constants, views
 from lab.models import SHADER_DIR, ModelError, model_names
 from lab.presets import read_preset, shipped_presets
+from lab.resources import data_dir
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
 
@@ -43,7 +44,19 @@ def manifest() -> dict:
         "constants": constants.as_dict(),
         "views": views.manifest(),
         "presets": presets(),
+        "exercises": exercise_list(),
     }
+
+
+def exercise_list() -> list[dict]:
+    """The exercises' folder names and titles, for the page's picker (the checks and
+    references load with exercises.json when one is opened)."""
+    from lab.grading.exercise import ExerciseError, find_exercises
+
+    try:
+        return [{"name": e.name, "title": e.title} for e in find_exercises(data_dir("exercises"))]
+    except ExerciseError:
+        return []
 
 
 def export(outdir: str | Path) -> Path:
@@ -58,8 +71,15 @@ def export(outdir: str | Path) -> Path:
         shutil.rmtree(target)
     shutil.copytree(SHADER_DIR, target, ignore=shutil.ignore_patterns("__pycache__"))
     (outdir / "manifest.json").write_text(json.dumps(manifest(), indent=1) + "\n", encoding="utf-8")
+    (outdir / "exercises.json").write_text(json.dumps(exercises_json()), encoding="utf-8")
     (outdir / ".nojekyll").write_text("", encoding="utf-8")  # GitHub Pages: serve files as-is
     return outdir / "index.html"
+
+
+def exercises_json() -> dict:
+    from lab.web.exercises import exercises_manifest
+
+    return exercises_manifest()
 
 
 class LabHandler(http.server.SimpleHTTPRequestHandler):
@@ -85,8 +105,10 @@ class LabHandler(http.server.SimpleHTTPRequestHandler):
         return super().translate_path(path)
 
     def do_GET(self) -> None:  # noqa: N802 (http.server's naming)
-        if self.path.split("?", 1)[0] == "/manifest.json":
-            body = json.dumps(manifest()).encode()
+        made = {"/manifest.json": manifest, "/exercises.json": exercises_json}
+        page = made.get(self.path.split("?", 1)[0])
+        if page is not None:
+            body = json.dumps(page()).encode()
             self.send_response(200)
             self.send_header("Content-Type", "application/json")
             self.send_header("Content-Length", str(len(body)))

@@ -38,14 +38,17 @@ export class ShaderEditor {
     this.editor = createEditor(this.host, { onChange: () => this.schedule() });
   }
 
-  /** Edits the model of `panel`; `original` is what reset goes back to. */
-  open(panel, original) {
+  /** Edits the model of `panel`; `original` is what reset goes back to. Exercise mode
+   * gives `build(text)` (the submission as a model), the file's `path` and `onResult(errors)`. */
+  open(panel, original, { build = null, path = null, onResult = null, text = null } = {}) {
     this.panel = panel;
     this.original = original;
-    this.path = panel.model?.path || `${panel.name}.glsl`;
+    this.build = build;
+    this.onResult = onResult;
+    this.path = path || panel.model?.path || `${panel.name}.glsl`;
     this.title.textContent = `${this.path.split("/").pop()}: edits apply to the ${panel.name} panel as you type`;
     this.root.hidden = false;
-    this.editor.setText(panel.model?.code ?? original);
+    this.editor.setText(text ?? panel.model?.code ?? original);
     this.check();
   }
 
@@ -69,7 +72,7 @@ export class ShaderEditor {
     const file = this.path.split("/").pop();
     let errors = [];
     try {
-      const model = parseModel(text, this.path, panel.name);
+      const model = this.build ? this.build(text) : parseModel(text, this.path, panel.name);
       this.env.tryCompile(panel, model);
       this.env.install(panel, model);
     } catch (err) {
@@ -77,8 +80,10 @@ export class ShaderEditor {
       else if (err.errors) {
         // Compile errors in this file at their lines; any elsewhere (the lab's own files,
         // reached through this one) on the first line, naming where they are.
-        errors = err.errors.map((e) => (e.file === this.path ? { line: e.line, message: e.message }
-          : { line: 1, message: `${e.file}:${e.line}: ${e.message}` }));
+        // A wrapper model (exercise mode) follows the student's text in the same file.
+        const own = text.split("\n").length;
+        errors = err.errors.map((e) => (e.file === this.path && e.line <= own ? { line: e.line, message: e.message }
+          : { line: 1, message: `${e.file === this.path ? "the library model after your file" : e.file}:${e.line}: ${e.message}` }));
         if (!errors.length) errors = [{ line: 1, message: err.message }];
       } else throw err;
     }
@@ -88,6 +93,7 @@ export class ShaderEditor {
       ? `${errors.length} error${errors.length > 1 ? "s" : ""} in ${file} (line ${lines}): the panel shows the last version that compiled`
       : `${file} compiles: the panel shows this version`;
     this.status.classList.toggle("bad", errors.length > 0);
+    this.onResult?.(errors);
     this.checks++;
     return errors;
   }

@@ -4,6 +4,7 @@ import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { ShaderEditor } from "./edit.js";
+import { ExerciseMode } from "./exercise.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
@@ -61,6 +62,7 @@ const lab = {
   notes: [],
   views: [], // shown besides the sphere and the polar plot: keys of VIEWS, in that order
   ...SETTINGS,
+  fast: false, // a slider is moving: the costly views draw a coarse version
   presets: [], // the desktop lab's presets (lab/app/presets/*.toml), from the manifest
   firstRenderMs: null,
 };
@@ -447,12 +449,16 @@ class Panel {
 
   /** Draws `view` at width x height into a float target and reads it back (RGBA floats,
    * row 0 at the bottom). `suffix` renames the parameter uniforms (NAME_base). */
-  run(view, width, height, uniforms, { preamble = "", transform = null, suffix = "" } = {}) {
+  run(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [] } = {}) {
     const gl = this.gl;
     const compiled = this.program(view, preamble, transform);
     gl.useProgram(compiled.program);
     gl.bindVertexArray(this.vao);
     this.setParams(gl, compiled, suffix);
+    textures.forEach((texture, unit) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, texture);
+    });
     for (const [name, value] of Object.entries(uniforms)) setUniform(gl, compiled, name, value);
     const key = `${width}x${height}`;
     if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height));
@@ -808,12 +814,27 @@ function installModel(panel, model) {
   scheduleRender();
 }
 
-function openEditor(panel) {
+/** Opens the editor on a panel's model; `options` (exercise mode): {path, build(text),
+ * onResult(errors)} and `original` the stub. */
+function openEditor(panel, original = null, options = {}) {
   if (!editor) editor = new ShaderEditor($("#editor"), { lab, el, tryCompile, install: installModel });
   const name = panel.name;
-  originals[name] ??= lab.files[`brdfs/${name}.glsl`] ?? panel.model?.code ?? "";
-  editor.open(panel, originals[name]);
+  originals[name] ??= original ?? lab.files[`brdfs/${name}.glsl`] ?? panel.model?.code ?? "";
+  if (!options.build && exercises?.exercise?.name === name) return exercises.open(name);
+  editor.open(panel, originals[name], options);
   $("#editor").scrollIntoView({ block: "nearest" });
+}
+
+let exercises = null;
+async function openExercise(name) {
+  exercises ??= new ExerciseMode($("#exercise"), { lab, el, C, direction, floatTexture, openEditor,
+    addPanel: (n) => {
+      const panel = addPanel(n);
+      scheduleRender();
+      return panel;
+    } });
+  await exercises.open(name);
+  writeHash();
 }
 
 // What views.js needs from the page.
@@ -821,6 +842,23 @@ const viewEnv = { lab, C, el, viewBox, direction, scheduleRender: () => schedule
 
 // -- page-level actions ---------------------------------------------------------------------
 let pending = 0;
+let settle = 0;
+const SETTLE_MS = 200;
+
+/** While the hand moves (slider input, drag) the costly views draw coarse; the full
+ * version follows SETTLE_MS after the last move. */
+function moving() {
+  clearTimeout(settle);
+  lab.fast = lab.views.length > 0;
+  settle = setTimeout(() => {
+    if (!lab.fast) return;
+    lab.fast = false;
+    scheduleRender();
+  }, SETTLE_MS);
+}
+addEventListener("input", (e) => e.target.type === "range" && moving(), true);
+addEventListener("pointermove", (e) => e.buttons && e.target.tagName === "CANVAS" && moving(), true);
+
 function scheduleRender() {
   writeHash();
   if (!pending) pending = requestAnimationFrame(() => {
@@ -1187,6 +1225,7 @@ async function load() {
   const manifest = JSON.parse(await fetchText("manifest.json"));
   Object.assign(C, manifest.constants);
   lab.presets = manifest.presets || [];
+  lab.exerciseList = manifest.exercises || [];
   const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
   manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
   for (const name of manifest.models) addModelText(`shaders/brdfs/${name}.glsl`, lab.files[`brdfs/${name}.glsl`], name);
@@ -1308,6 +1347,8 @@ function buildPage() {
   $("#overlay").prepend(el("header", {}, "all models on one scale"));
   $("#overlay .view").append(el("button", { type: "button", class: "png", title: "save the overlaid polar plot as a PNG image",
     onclick: () => savePng($("#overlay canvas"), "polar_all.png") }, "PNG"));
+  $("#exercise-pick").append(...lab.exerciseList.map((e) => el("option", { value: e.name }, e.title)));
+  $("#exercise-pick").addEventListener("change", (e) => e.target.value && openExercise(e.target.value));
   $("#preset").append(...lab.presets.map((p, i) => el("option", { value: i }, p.title || p.file)));
   $("#preset").addEventListener("change", (e) => e.target.value !== "" && applyPreset(Number(e.target.value)));
   $("#reset").addEventListener("click", reset);
@@ -1399,6 +1440,11 @@ window.brdfLab = {
   get editor() {
     return editor;
   },
+  /** Opens an exercise (folder name) in practice mode; resolves when its checks ran. */
+  openExercise,
+  get exercises() {
+    return exercises;
+  },
   presetHash: (preset) => {
     const skipped = [];
     return { hash: presetHash(preset, skipped), skipped };
@@ -1454,6 +1500,8 @@ window.brdfLab = {
   /** Frame times (ms) while a slider of panel i moves through `steps` positions. */
   sliderFrames(i, name, steps = 60) {
     const times = [];
+    clearTimeout(settle);
+    lab.fast = lab.views.length > 0;
     for (let k = 0; k < steps; k++) {
       const start = performance.now();
       lab.panels[i].moveSlider(name, Math.round((SLIDER_STEPS * ((k * 37) % steps)) / steps));
@@ -1461,6 +1509,8 @@ window.brdfLab = {
       lab.panels[i].gl.finish();
       times.push(performance.now() - start);
     }
+    lab.fast = false;
+    renderNow();
     return times;
   },
 };

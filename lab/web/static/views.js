@@ -9,6 +9,10 @@ export const MODES = ["geometry only", "single BRDF", "diffuse texture only", "t
 // theta_i from 0 to 87.5 degrees, samples along each wedge, wedges around the mirror
 // direction: the desktop's full-quality albedo (lab/app/views.py AlbedoView.FULL).
 export const ALBEDO = { theta0: 0, step: 2.5, count: 36, samples: 192, wedges: 48 };
+// While a slider or the light moves: the desktop's fast albedo, a smaller slice and a
+// half-resolution object; the full views follow once the hand stops (lab.fast is off).
+export const ALBEDO_FAST = { theta0: 0, step: 85 / 8, count: 9, samples: 32, wedges: 16 };
+export const SLICE_FAST = 96;
 export const SLICE_MAX = 256;
 
 /** Linear RGB(A) floats (rows from the bottom) -> an sRGB ImageData (rows from the top),
@@ -95,7 +99,7 @@ export class SliceView {
 
   render() {
     const { lab } = this.env;
-    const n = Math.min(lab.size, SLICE_MAX);
+    const n = Math.min(lab.size, lab.fast ? SLICE_FAST : SLICE_MAX);
     this.size = n;
     this.data = this.panel.run("slice", n, n, { u_resolution: [n, n], u_phi_d: (lab.phiD * Math.PI) / 180 });
     const canvas = this.canvas;
@@ -147,7 +151,7 @@ export class AlbedoView {
 
   render() {
     const { lab } = this.env;
-    const a = ALBEDO;
+    const a = lab.fast ? ALBEDO_FAST : ALBEDO;
     const raw = this.panel.run("albedo", a.wedges, a.count, {
       u_theta0: (a.theta0 * Math.PI) / 180, u_theta_step: (a.step * Math.PI) / 180,
       u_phi_i: (lab.lights[0].phi * Math.PI) / 180, u_samples: a.samples, u_wedges: a.wedges,
@@ -257,7 +261,7 @@ export class ObjectView {
 
   render() {
     const { lab, C, direction } = this.env;
-    const n = lab.size;
+    const n = lab.fast ? Math.ceil(lab.size / 2) : lab.size;
     const dirs = [];
     const rgb = [];
     for (let i = 0; i < C.MAX_LIGHTS; i++) {
@@ -270,7 +274,14 @@ export class ObjectView {
       u_resolution: [n, n], u_light_dir: dirs, u_light_rgb: rgb, u_ambient: lab.ambient,
       u_shape: lab.shape, u_mode: lab.mode, u_yaw: lab.yaw, u_pitch: lab.pitch,
     }, { preamble: `const int LIGHT_COUNT = ${lab.lights.length};`, transform: spatiallyVarying, suffix: "_base" });
-    this.canvas.getContext("2d").putImageData(toImage(this.data, n, n, lab.exposure), 0, 0);
+    const ctx = this.canvas.getContext("2d");
+    if (n === this.canvas.width) ctx.putImageData(toImage(this.data, n, n, lab.exposure), 0, 0);
+    else {
+      const scratch = new OffscreenCanvas(n, n);
+      scratch.getContext("2d").putImageData(toImage(this.data, n, n, lab.exposure), 0, 0);
+      ctx.clearRect(0, 0, this.canvas.width, this.canvas.height);
+      ctx.drawImage(scratch, 0, 0, this.canvas.width, this.canvas.height);
+    }
   }
 
   read() {

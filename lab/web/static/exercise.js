@@ -1,0 +1,315 @@
+// Exercise mode: open an exercise, edit its stub in the page, and run the grader's checks
+// in WebGL as a practice check (not a grade: `brdf-lab grade` decides). exercises.json
+// (lab/web/exercises.py) carries each check's inputs, computed by the grader's own code,
+// and the committed references; the comparisons here follow lab/grading/checks.py
+// (compare_values, compare_image) with the same tolerances and messages.
+import { ModelError, defaults, formatG, parseModel } from "./header.js";
+import { topFirst } from "./views.js";
+
+const fromBase64 = (text, Type) => {
+  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  return new Type(bytes.buffer);
+};
+
+// -- the submission as a model (lab/grading/exercise.py build_model) ------------------------
+const COMMENTS = /\/\/[^\n]*|\/\*[\s\S]*?\*\//g;
+const SIGNATURE = /\b(\w+)\s+(\w+)\s*\(([^()]*)\)\s*\{/g;
+const QUALIFIERS = ["in", "const", "highp", "mediump", "lowp"];
+
+function types(params) {
+  const out = [];
+  for (const part of params.split(",")) {
+    const words = part.split(/\s+/).filter((w) => w && !QUALIFIERS.includes(w));
+    if (words.length && !(words.length === 1 && words[0] === "void")) {
+      out.push(words.length > 1 ? words.slice(0, -1).join(" ") : words[0]);
+    }
+  }
+  return out;
+}
+
+/** Each required function is defined with the grader's signature (check_functions). */
+export function checkFunctions(code, required, label) {
+  const stripped = code.replace(COMMENTS, (m) => m.replace(/[^\n]/g, " "));
+  const defined = {};
+  for (const match of stripped.matchAll(SIGNATURE)) {
+    const [, ret, name, params] = match;
+    if (["if", "for", "while", "return", "else"].includes(ret) || name in defined) continue;
+    defined[name] = [ret, types(params), stripped.slice(0, match.index).split("\n").length];
+  }
+  for (const signature of required) {
+    const [, ret, name, params] = new RegExp(SIGNATURE.source).exec(`${signature} {`);
+    if (!(name in defined)) {
+      const close = Object.keys(defined).find((n) => n.toLowerCase() === name.toLowerCase());
+      const hint = close ? ` (you defined ${close}: check the spelling)` : "";
+      throw new ModelError(`function ${name} is missing${hint}; define ${signature}`, label);
+    }
+    const [gotRet, gotTypes, line] = defined[name];
+    if (gotRet !== ret || gotTypes.join(",") !== types(params).join(",")) {
+      throw new ModelError(`${gotRet} ${name}(${gotTypes.join(", ")}) has the wrong signature; the grader calls ${signature}`, label, line);
+    }
+  }
+}
+
+/** The student's text as a model every view renders, named after the exercise. */
+export function buildSubmission(exercise, text, path, models) {
+  checkFunctions(text, exercise.functions, path);
+  if (exercise.wrapper) {
+    const wrapper = models[exercise.wrapper];
+    return { ...wrapper, name: exercise.name, path, code: `${text.replace(/\n+$/, "")}\n${wrapper.code}`,
+      includes: wrapper.includes.filter((i) => i !== exercise.replaces), studentLines: text.split("\n").length };
+  }
+  const model = { ...parseModel(text, path), name: exercise.name };
+  // The grader sets the stub's parameters; a default changed to try things out costs nothing.
+  const stub = parseModel(exercise.stub, path);
+  model.params = model.params.map((p) => {
+    const given = stub.params.find((q) => q.name === p.name);
+    return given ? { ...p, default: given.default } : p;
+  });
+  return model;
+}
+
+// -- comparisons (lab/grading/checks.py) -----------------------------------------------------
+const tonemap = (x) => {
+  x = Number.isNaN(x) ? 0 : x === Infinity ? 1e30 : Math.max(x, 0);
+  return Math.pow(x / (1 + x), 1 / 2.2);
+};
+
+/** compare_values: within atol + rtol |expected|, NaN/Inf/negative always wrong. */
+export function compareValues(check, expected, got) {
+  const n = check.count;
+  let bad = 0;
+  let wrong = 0;
+  for (let i = 0; i < n; i++) {
+    let isBad = false;
+    let isWrong = false;
+    for (let c = 0; c < 3; c++) {
+      const g = got[4 * i + c];
+      const e = expected[3 * i + c];
+      if (!Number.isFinite(g) || g < 0) isBad = true;
+      const error = Number.isNaN(g) ? Infinity : Math.abs(g - e);
+      if (error > check.atol + check.rtol * Math.abs(e)) isWrong = true;
+    }
+    bad += isBad;
+    wrong += isBad || isWrong;
+  }
+  if (bad) {
+    return { passed: false, message: `${bad} of ${n} ${check.what} are NaN, infinite or negative; ` +
+      "a BRDF is finite and >= 0 (guard divisions and pow of negatives)" };
+  }
+  if (wrong) {
+    return { passed: false, message: `${wrong} of ${n} ${check.what} differ from the solution by more than ` +
+      `${formatG(check.rtol)} x value + ${formatG(check.atol)}` };
+  }
+  return { passed: true, message: `all ${n} ${check.what} match` };
+}
+
+/** compare_image's verdict (FLIP is the grader's only): tone-mapped per-channel threshold
+ * and a largest failing fraction; returns the signed difference (student - reference). */
+export function compareImage(check, reference, raw) {
+  const size = check.size;
+  const signed = new Float32Array(size * size);
+  const covered = new Uint8Array(size * size);
+  let nCovered = 0;
+  let failing = 0;
+  let bad = 0;
+  for (let i = 0; i < size * size; i++) {
+    if (reference[4 * i + 3] <= 127) continue;
+    covered[i] = 1;
+    nCovered++;
+    let pick = 0;
+    let isBad = false;
+    for (let c = 0; c < 3; c++) {
+      const x = raw[4 * i + c];
+      if (!Number.isFinite(x) || x < 0) isBad = true;
+      const delta = (tonemap(x) - reference[4 * i + c] / 255) * 255;
+      if (Math.abs(delta) > Math.abs(pick)) pick = delta;
+    }
+    if (isBad) {
+      bad++;
+      pick = 255;
+    }
+    signed[i] = pick;
+    if (Math.abs(pick) > check.threshold) failing++;
+  }
+  const fraction = failing / Math.max(nCovered, 1);
+  const summary = `${(100 * fraction).toFixed(2)}% of pixels off by more than ${formatG(check.threshold)}/255 ` +
+    `(allowed ${(100 * check.max_fraction).toFixed(2)}%), mean FLIP: brdf-lab grade computes it`;
+  const out = { signed, covered, fraction };
+  if (bad) return { ...out, passed: false, message: `${bad} pixels are NaN, infinite or negative (magenta); ${summary}` };
+  return { ...out, passed: fraction <= check.max_fraction, message: summary };
+}
+
+// The report's colours (lab/grading/visuals.py): red too bright, blue too dark.
+const TOO_BRIGHT = [0.85, 0.15, 0.1];
+const TOO_DARK = [0.1, 0.35, 0.95];
+const SCALE = 8;
+
+export function signedDifferenceImage(signed, covered, size, threshold) {
+  const image = new ImageData(size, size);
+  for (let i = 0; i < size * size; i++) {
+    const d = signed[i];
+    let rgb = [1, 1, 1];
+    if (covered[i]) {
+      const amount0 = Math.min(Math.max(Math.abs(d) / (SCALE * threshold), 0), 1);
+      const amount = Math.abs(d) > threshold ? 0.25 + 0.75 * amount0 : 0.25 * amount0;
+      const colour = d >= 0 ? TOO_BRIGHT : TOO_DARK;
+      rgb = colour.map((c) => 0.93 * (1 - amount) + c * amount);
+    }
+    for (let c = 0; c < 3; c++) image.data[4 * i + c] = Math.round(rgb[c] * 255);
+    image.data[4 * i + 3] = 255;
+  }
+  return image;
+}
+
+function toneImage(raw, size) {
+  const image = new ImageData(size, size);
+  for (let i = 0; i < size * size; i++) {
+    for (let c = 0; c < 3; c++) image.data[4 * i + c] = Math.floor(Math.min(Math.max(tonemap(raw[4 * i + c]), 0), 1) * 255 + 0.5);
+    image.data[4 * i + 3] = Math.round(Math.min(Math.max(raw[4 * i + 3], 0), 1) * 255);
+  }
+  return image;
+}
+
+/** Check parameters as the panel holds values (colours as arrays). */
+function checkValues(model, params) {
+  return { ...defaults(model), ...params };
+}
+
+/** Runs one check on the panel (its model is the submission); {passed, message, ...}. */
+export function runCheck(panel, check, env) {
+  const saved = panel.values;
+  panel.values = checkValues(panel.model, check.params);
+  try {
+    if (check.kind === "sphere") {
+      const { C, direction } = env;
+      const dirs = [];
+      const rgb = [];
+      for (let i = 0; i < C.MAX_LIGHTS; i++) {
+        const light = check.lights[i];
+        dirs.push(light ? direction(light[0], light[1]) : [0, 0, 1]);
+        rgb.push(light ? light[2] : [0, 0, 0]);
+      }
+      const size = check.size;
+      const raw = topFirst(panel.run(check.view, size, size, { u_resolution: [size, size], u_light_dir: dirs,
+        u_light_rgb: rgb, u_ambient: check.ambient, u_multiply_cos: true },
+      { preamble: `const int LIGHT_COUNT = ${check.lights.length};` }), size, size);
+      check.referencePixels ??= fromBase64(check.reference, Uint8Array);
+      const result = compareImage(check, check.referencePixels, raw);
+      return { ...result, student: toneImage(raw, size) };
+    }
+    // The directions are made here in double precision (the probe view): built-in sin and
+    // cos are coarse on some GPUs (SwiftShader), the grader's llvmpipe's are not.
+    const gl = panel.gl;
+    const n = check.count;
+    const degrees = fromBase64(check.angles, Float32Array);
+    const L = new Float32Array(4 * n);
+    const V = new Float32Array(4 * n);
+    for (let i = 0; i < n; i++) {
+      L.set(env.direction(degrees[4 * i], degrees[4 * i + 1]), 4 * i);
+      V.set(env.direction(degrees[4 * i + 2], degrees[4 * i + 3]), 4 * i);
+    }
+    const textures = [env.floatTexture(gl, n, L), env.floatTexture(gl, n, V)];
+    try {
+      const got = panel.run("probe", n, 1, { u_L: 0, u_V: 1 }, { textures });
+      check.expectedValues ??= fromBase64(check.expected, Float32Array);
+      return compareValues(check, check.expectedValues, got);
+    } finally {
+      textures.forEach((t) => gl.deleteTexture(t));
+    }
+  } finally {
+    panel.values = saved;
+  }
+}
+
+// -- the page's exercise section -----------------------------------------------------------
+export class ExerciseMode {
+  /** `env`: { lab, el, C, direction, floatTexture, addPanel, openEditor } from lab.js. */
+  constructor(root, env) {
+    this.root = root;
+    this.env = env;
+    this.data = null;
+    this.exercise = null;
+    this.panel = null;
+    this.results = [];
+    this.runs = 0;
+  }
+
+  async load() {
+    if (!this.data) {
+      const response = await fetch("exercises.json");
+      if (!response.ok) throw new Error(`cannot load exercises.json (HTTP ${response.status})`);
+      this.data = await response.json();
+    }
+    return this.data.exercises;
+  }
+
+  /** Opens exercise `name`: its stub in the editor, its model in a panel, the checks run. */
+  async open(name) {
+    const { lab } = this.env;
+    const exercise = (await this.load()).find((e) => e.name === name);
+    if (!exercise) throw new Error(`no exercise ${name}`);
+    this.exercise = exercise;
+    const path = exercise.student_file;
+    lab.models[exercise.name] = buildSubmission(exercise, exercise.stub, path, lab.models);
+    if (!lab.order.includes(exercise.name)) lab.order.push(exercise.name);
+    this.panel = lab.panels.find((p) => p.name === exercise.name) || this.env.addPanel(exercise.name);
+    this.env.openEditor(this.panel, exercise.stub, {
+      path,
+      text: exercise.stub,
+      build: (text) => buildSubmission(exercise, text, path, lab.models),
+      onResult: (errors) => this.run(errors),
+    });
+  }
+
+  /** Runs every check (or reports the compile errors on each, as the grader does). */
+  run(errors = []) {
+    const exercise = this.exercise;
+    if (!exercise || !this.panel?.model) return [];
+    this.results = exercise.checks.map((check) => {
+      if (errors.length) {
+        const first = errors[0];
+        return { check, passed: false, message: `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}` };
+      }
+      try {
+        return { check, ...runCheck(this.panel, check, this.env) };
+      } catch (err) {
+        if (!err.errors && !(err instanceof ModelError)) throw err;
+        return { check, passed: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` };
+      }
+    });
+    this.runs++;
+    this.show();
+    return this.results;
+  }
+
+  show() {
+    const { el } = this.env;
+    const exercise = this.exercise;
+    const points = this.results.reduce((s, r) => s + (r.passed ? r.check.points : 0), 0);
+    const rows = this.results.map((r) => el("li", { class: r.passed ? "pass" : "fail", "data-check": r.check.name },
+      el("span", { class: "mark" }, r.passed ? "✓" : "✗"), " ",
+      el("strong", {}, r.check.name), ` (${formatG(r.passed ? r.check.points : 0)}/${formatG(r.check.points)}): `,
+      r.message));
+    const pictures = [];
+    for (const r of this.results) {
+      if (r.check.kind !== "sphere" || !r.signed) continue;
+      const size = r.check.size;
+      const canvas = (image, title) => {
+        const c = el("canvas", { width: size, height: size, title });
+        c.getContext("2d").putImageData(image, 0, 0);
+        return el("figure", {}, c, el("figcaption", {}, title));
+      };
+      const ref = r.check.referencePixels;
+      const reference = new ImageData(new Uint8ClampedArray(ref.buffer.slice(0)), size, size);
+      pictures.push(el("div", { class: "exercise-images", "data-check": r.check.name },
+        canvas(reference, `reference: ${r.check.name}`), canvas(r.student, "yours"),
+        canvas(signedDifferenceImage(r.signed, r.covered, size, r.check.threshold),
+          `yours − reference (red: too bright, blue: too dark; ±${formatG(r.check.threshold)}/255 allowed)`)));
+    }
+    this.root.replaceChildren(
+      el("header", {}, el("strong", {}, exercise.title),
+        el("span", { class: "practice" }, `practice check in the browser, not a grade (brdf-lab grade decides): ${formatG(points)} / ${formatG(exercise.max_points)} points`)),
+      el("ul", { class: "checks" }, ...rows), ...pictures);
+    this.root.hidden = false;
+  }
+}

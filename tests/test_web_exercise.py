@@ -1,0 +1,120 @@
+"""Exercise mode in the page: the practice verdict of every check equals `brdf-lab grade` on
+the same file, for a correct and a wrong submission, with the grader's messages."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from lab.web.browser import chromium_path
+
+pytestmark = pytest.mark.skipif(
+    chromium_path() is None, reason="Chromium is not installed (apt-get install chromium)"
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+# (exercise, the solution's file, a wrong version of it: one typical slip)
+CASES = [
+    ("02_phong", "phong.glsl", ("pow(RoV, ke)", "pow(RoV, ke * 0.5)")),
+    ("07_geometric_attenuation", "geometry.glsl", ("min(1.0", "max(1.0")),
+]
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    from lab.web.browser import chromium
+    from lab.web.site import export, serving
+
+    site = export(tmp_path_factory.mktemp("site")).parent
+    with serving(site) as url, chromium() as browser:
+        tab = browser.new_page(viewport={"width": 1300, "height": 900})
+        tab.errors = []
+        tab.on("pageerror", lambda e: tab.errors.append(str(e)))
+        tab.goto(f"{url}index.html#model=phong&size=96")
+        tab.evaluate("window.brdfLab.ready")
+        yield tab
+
+
+def grade(exercise: str, submission: Path, tmp_path: Path) -> dict[str, tuple[bool, str]]:
+    from lab.cli import main
+
+    out = tmp_path / f"{submission.stem}.json"
+    main(
+        [
+            "grade",
+            str(ROOT / "exercises" / exercise),
+            "--submission",
+            str(submission),
+            "--json",
+            str(out),
+        ]
+    )
+    tests = json.loads(out.read_text())["tests"]
+    return {t["name"].split(".", 1)[1]: (t["status"] == "passed", t["output"]) for t in tests}
+
+
+def practice(page, exercise: str, text: str) -> dict[str, tuple[bool, str]]:
+    if page.evaluate("brdfLab.exercises?.exercise?.name ?? ''") != exercise:
+        page.evaluate("n => brdfLab.openExercise(n)", exercise)
+    runs = page.evaluate("brdfLab.exercises.runs")
+    page.evaluate("t => brdfLab.editor.editor.setText(t)", text)
+    page.wait_for_function(f"brdfLab.exercises.runs > {runs}")
+    results = page.evaluate(
+        "brdfLab.exercises.results.map(r => [r.check.name, r.passed, r.message])"
+    )
+    return {name: (passed, message) for name, passed, message in results}
+
+
+@pytest.mark.parametrize("exercise,student_file,slip", CASES)
+def test_practice_verdict_equals_the_grader(page, tmp_path, exercise, student_file, slip):
+    solution = (ROOT / "solutions" / exercise / student_file).read_text()
+    assert slip[0] in solution
+    wrong = solution.replace(slip[0], slip[1], 1)
+    for label, text in (("correct", solution), ("wrong", wrong)):
+        path = tmp_path / label / student_file
+        path.parent.mkdir()
+        path.write_text(text)
+        graded = grade(exercise, path, tmp_path)
+        shown = practice(page, exercise, text)
+        assert set(shown) == set(graded)
+        for name, (passed, message) in graded.items():
+            assert shown[name][0] == passed, (label, name, shown[name], message)
+            # The grader may add its diagnosis ('. Likely: ...') and computes FLIP itself.
+            mine = shown[name][1].split(", mean FLIP")[0]
+            assert message.startswith(mine), (label, name, shown[name][1], message)
+        if label == "correct":
+            assert all(passed for passed, _ in graded.values())
+        else:
+            assert not all(passed for passed, _ in graded.values())
+    assert page.locator("#exercise .practice").inner_text().startswith("practice check")
+    assert page.errors == []
+
+
+def test_exercise_mode_shows_reference_yours_and_signed_difference(page, output_dir):
+    practice(
+        page,
+        "02_phong",
+        (ROOT / "solutions/02_phong/phong.glsl")
+        .read_text()
+        .replace("pow(RoV, ke)", "pow(RoV, ke) * 1.5"),
+    )
+    figures = page.locator("#exercise .exercise-images figure")
+    assert figures.count() == 3
+    captions = [figures.nth(i).locator("figcaption").inner_text() for i in range(3)]
+    assert captions[0].startswith("reference") and captions[1] == "yours"
+    assert "red: too bright" in captions[2]
+    # Too bright a highlight: the difference image has red pixels and no blue ones.
+    red_blue = page.evaluate(
+        """() => { const c = document.querySelectorAll('#exercise canvas')[2];
+          const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+          let red = 0, blue = 0;
+          for (let i = 0; i < d.length; i += 4) {
+            if (d[i] - d[i + 2] > 30) red++;
+            if (d[i + 2] - d[i] > 30) blue++;
+          }
+          return [red, blue]; }"""
+    )
+    assert red_blue[0] > 20 and red_blue[1] == 0, red_blue
+    page.locator("#exercise").screenshot(path=output_dir / "web_exercise.png")
