@@ -1383,6 +1383,8 @@ async function main() {
   fitEmbed();
   if (pending) cancelAnimationFrame(pending);
   pending = 0;
+  // Progressive: the costly views come first coarse, at full quality SETTLE_MS later.
+  moving();
   renderNow();
   lab.firstRenderMs = performance.now(); // since navigation start
   writeHash();
@@ -1465,6 +1467,11 @@ window.brdfLab = {
   /** Another view of panel i: images as {width, height, data} (base64 float32 RGBA, row 0
    * at the top); the albedo as {thetas, rgb, gain}. */
   readView(i, name) {
+    if (lab.fast) {
+      clearTimeout(settle);
+      lab.fast = false;
+      renderNow();
+    }
     const out = lab.panels[i].extra[name].read();
     return out.data ? { ...out, data: toBase64(out.data) } : out;
   },
