@@ -155,3 +155,18 @@ def test_bundle_is_built_from_the_committed_lockfile():
         assert f"node_modules/{name}" in lock["packages"], name
     bundle = (Path(__file__).resolve().parents[1] / "lab/web/static/editor.js").read_text()
     assert "createEditor" in bundle and "cm-lintRange" in bundle
+
+
+def test_loop_guard_warning_names_the_line(page):
+    """A loop that does not end is stopped by the guard; the page says where."""
+    page.evaluate("brdfLab.edit(0)")
+    lines = PHONG.splitlines()
+    at = next(i for i, t in enumerate(lines) if "float RoV" in t)
+    lines.insert(at + 1, "    for (int i = 0; i >= 0; i++) { RoV *= 1.0; }")
+    assert edit(page, "\n".join(lines) + "\n") == []
+    warning = page.evaluate("brdfLab.loopWarning(0)")
+    assert warning.startswith(f"shaders/brdfs/phong.glsl:{at + 2}: the loop at line {at + 2}")
+    assert "did not end within 10,000 iterations" in warning
+    assert page.locator(".loop-warning").is_visible()
+    edit(page, PHONG)
+    assert page.evaluate("brdfLab.loopWarning(0)") == ""

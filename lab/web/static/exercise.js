@@ -170,6 +170,27 @@ function toneImage(raw, size) {
   return image;
 }
 
+/** The grader's message for a loop its guard stopped (lab/grading/checks.py). */
+function loopFailure(check, panel, env, where) {
+  const line = panel.lastLoop.line;
+  const file = panel.model.path.split("/").pop();
+  return { passed: false, message: `${file}:${line}: the loop at line ${line} did not end within ` +
+    `${Number(env.C.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where}; check its exit condition ` +
+    "(on a GPU such a loop freezes the screen)" };
+}
+
+/** stopped_where for a sphere pixel (x, y from the bottom, as read back). */
+function sphereWhere(check, stop, env) {
+  const px = ((stop.x + 0.5) / check.size) * 2 - 1;
+  const py = ((stop.y + 0.5) / check.size) * 2 - 1;
+  const n = [px, py, Math.sqrt(Math.max(1 - px * px - py * py, 0))];
+  const light = check.lights[0] || [45, 0];
+  const l = env.direction(light[0], light[1]);
+  const deg = (c) => ((Math.acos(Math.min(Math.max(c, -1), 1)) * 180) / Math.PI).toFixed(1);
+  const thetaI = deg(n[0] * l[0] + n[1] * l[1] + n[2] * l[2]);
+  return `pixel (${stop.x}, ${check.size - 1 - stop.y}) of the sphere (θi = ${thetaI}°, θo = ${deg(n[2])}°)`;
+}
+
 /** Check parameters as the panel holds values (colours as arrays). */
 function checkValues(model, params) {
   return { ...defaults(model), ...params };
@@ -194,6 +215,7 @@ export function runCheck(panel, check, env) {
         u_light_rgb: rgb, u_ambient: check.ambient, u_multiply_cos: true },
       { preamble: `const int LIGHT_COUNT = ${check.lights.length};` }), size, size);
       check.referencePixels ??= fromBase64(check.reference, Uint8Array);
+      if (panel.lastLoop) return loopFailure(check, panel, env, sphereWhere(check, panel.lastLoop, env));
       const result = compareImage(check, check.referencePixels, raw);
       return { ...result, student: toneImage(raw, size) };
     }
@@ -211,6 +233,11 @@ export function runCheck(panel, check, env) {
     const textures = [env.floatTexture(gl, n, L), env.floatTexture(gl, n, V)];
     try {
       const got = panel.run("probe", n, 1, { u_L: 0, u_V: 1 }, { textures });
+      if (panel.lastLoop) {
+        const row = degrees.slice(4 * Math.min(panel.lastLoop.x, n - 1), 4 * Math.min(panel.lastLoop.x, n - 1) + 4);
+        const where = `(θi, φi, θo, φo) = (${[...row].map((d) => `${d.toFixed(1)}°`).join(", ")})`;
+        return loopFailure(check, panel, env, where);
+      }
       check.expectedValues ??= fromBase64(check.expected, Float32Array);
       return compareValues(check, check.expectedValues, got);
     } finally {

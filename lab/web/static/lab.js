@@ -203,19 +203,42 @@ function setUniform(gl, compiled, name, value) {
   }
 }
 
-function floatTarget(gl, width, height) {
-  const texture = gl.createTexture();
-  gl.bindTexture(gl.TEXTURE_2D, texture);
-  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+/** A float render target; with `flag`, a second one at location 1 for the loop guard's
+ * flag (the line of a loop it stopped, per pixel; assemble.js). */
+function floatTarget(gl, width, height, flag = false) {
+  const make = () => {
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    return t;
+  };
+  const texture = make();
   const fbo = gl.createFramebuffer();
   gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
   gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+  if (flag) {
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT1, gl.TEXTURE_2D, make(), 0);
+    gl.drawBuffers([gl.COLOR_ATTACHMENT0, gl.COLOR_ATTACHMENT1]);
+  }
   const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   if (status !== gl.FRAMEBUFFER_COMPLETE) throw new Error("this browser cannot render to float textures");
-  return { texture, fbo, width, height };
+  return { texture, fbo, width, height, flag };
+}
+
+/** Where the loop guard stopped a loop in the bound target: {line, x, y} or null. */
+function loopStop(gl, target) {
+  if (!target.flag) return null;
+  const flags = new Float32Array(4 * target.width * target.height);
+  gl.readBuffer(gl.COLOR_ATTACHMENT1);
+  gl.readPixels(0, 0, target.width, target.height, gl.RGBA, gl.FLOAT, flags);
+  gl.readBuffer(gl.COLOR_ATTACHMENT0);
+  for (let i = 0; i < target.width * target.height; i++) {
+    if (flags[4 * i] > 0) return { line: Math.round(flags[4 * i]), x: i % target.width, y: Math.floor(i / target.width) };
+  }
+  return null;
 }
 
 function floatTexture(gl, width, data) {
@@ -252,6 +275,7 @@ class Panel {
     this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size / 2 + (lab.embed ? 34 : 28)) });
     this.displaySize(lab.size);
     this.errorBox = el("pre", { class: "errors", hidden: "" });
+    this.loopBox = el("p", { class: "errors loop-warning", hidden: "" });
     this.viewsBox = el("div", { class: "views" });
     this.controls = el("div", { class: "controls" });
     this.formula = el("div", { class: "formula" });
@@ -260,7 +284,7 @@ class Panel {
     this.root.append(el("header", {}, this.picker, el("span", {}, this.editButton, this.closeButton)),
       el("div", { class: "views" }, viewBox(this.canvas, "sphere", file("sphere")),
         viewBox(this.polar, "polar plot", file("polar"))),
-      this.viewsBox, this.errorBox, this.controls, this.formula);
+      this.viewsBox, this.errorBox, this.loopBox, this.controls, this.formula);
     this.gl = this.canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
     if (!this.gl) {
       this.showError("this browser has no WebGL2");
@@ -275,7 +299,7 @@ class Panel {
     this.vao = gl.createVertexArray();
     this.targets = new Map(); // float render targets of the other views, by size
     this.target = floatTarget(gl, lab.size, lab.size);
-    this.probeTarget = floatTarget(gl, POLAR_STEPS, 1);
+    this.probeTarget = floatTarget(gl, POLAR_STEPS, 1, true);
     this.display = compile(gl, DISPLAY_SHADER, null);
     this.canvas.addEventListener("pointerdown", (e) => {
       this.canvas.setPointerCapture(e.pointerId);
@@ -416,6 +440,17 @@ class Panel {
     return this.values[name];
   }
 
+  /** The loop guard's warning: a loop of the model did not end (seen at the polar plot's
+   * directions); its values are wrong there and on a GPU it would freeze the screen. */
+  showLoop(stop) {
+    this.loop = stop;
+    const text = stop ? `${this.model.path}:${stop.line}: the loop at line ${stop.line} did not end within ` +
+      `${Number(C.LOOP_LIMIT).toLocaleString("en-US")} iterations at θo = ${stop.x - 90}° of the polar plot; ` +
+      "the lab stopped it, so the pictures are wrong: check its exit condition (on a GPU such a loop freezes the screen)" : "";
+    this.loopBox.textContent = text;
+    this.loopBox.hidden = !text;
+  }
+
   showError(text) {
     this.error = text;
     this.errorBox.textContent = text;
@@ -461,12 +496,14 @@ class Panel {
     });
     for (const [name, value] of Object.entries(uniforms)) setUniform(gl, compiled, name, value);
     const key = `${width}x${height}`;
-    if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height));
-    gl.bindFramebuffer(gl.FRAMEBUFFER, this.targets.get(key).fbo);
+    if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height, true));
+    const target = this.targets.get(key);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
     gl.viewport(0, 0, width, height);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     const out = new Float32Array(width * height * 4);
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, out);
+    this.lastLoop = loopStop(gl, target);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     return out;
   }
@@ -555,6 +592,7 @@ class Panel {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     const out = new Float32Array(4 * POLAR_STEPS);
     gl.readPixels(0, 0, POLAR_STEPS, 1, gl.RGBA, gl.FLOAT, out);
+    this.showLoop(loopStop(gl, this.probeTarget));
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     textures.forEach((t) => gl.deleteTexture(t));
     this.lobe = out;
@@ -674,12 +712,18 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   };
   ctx.fillStyle = "#999";
   ctx.font = `${Math.round(font * 0.85)}px system-ui, sans-serif`;
-  for (const [r, value] of rings) {
+  let free = cx; // ring values left to right, each only where the last one has ended
+  for (const [r, value] of [...rings].sort((a, b) => a[0] - b[0])) {
     ctx.strokeStyle = r === 1 ? "#8888" : "#5556";
     ctx.beginPath();
     ctx.arc(cx, cy, radius * r, Math.PI, 2 * Math.PI);
     ctx.stroke();
-    if (scale > 0 && (r >= 0.5 || lab.polarLog)) ctx.fillText(formatG(Number(value.toPrecision(2))), cx + radius * r + 2, cy - 3);
+    const text = formatG(Number(value.toPrecision(2)));
+    const x = cx + radius * r + 2;
+    if (scale > 0 && x >= free && x + ctx.measureText(text).width <= w) {
+      ctx.fillText(text, x, cy - 3);
+      free = x + ctx.measureText(text).width + 4;
+    }
   }
   ctx.font = `${font}px system-ui, sans-serif`;
   const ray = (angleDeg, r, color, dash) => {
@@ -1432,6 +1476,8 @@ window.brdfLab = {
   },
   values: (i = 0) => ({ ...lab.panels[i].values }),
   errors: (i = 0) => lab.panels[i].error,
+  /** The loop guard's warning on panel i ('' when no loop was stopped). */
+  loopWarning: (i = 0) => (lab.panels[i].loopBox.hidden ? "" : lab.panels[i].loopBox.textContent),
   notes: () => lab.notes.slice(),
   applyPreset: (i) => applyPreset(i),
   /** Opens the editor on panel i; returns its API (text, setText, errors, check). */
