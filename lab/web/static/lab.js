@@ -689,10 +689,6 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   ctx.clearRect(0, 0, w, h);
   ctx.font = `${font}px system-ui, sans-serif`;
   ctx.lineWidth = 1;
-  const at = (angleDeg, r) => {
-    const a = (angleDeg * Math.PI) / 180;
-    return [cx + r * Math.sin(a), cy - r * Math.cos(a)];
-  };
   // Rings: quarters of the scale, or one per decade on the log scale; values beside them.
   const rings = lab.polarLog
     ? Array.from({ length: C.PLOT_DECADES }, (_, k) => [(C.PLOT_DECADES - k) / C.PLOT_DECADES, scale * Math.pow(10, -k)])
