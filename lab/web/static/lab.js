@@ -315,6 +315,11 @@ class Panel {
     // Never wider than the panel (phones): the canvases' height follows their aspect.
     this.canvas.style.width = `${px}px`;
     this.polar.style.width = `${px}px`;
+    if (lab.embed) {
+      // Embedded: exact heights, so that fitting the frame converges (the grid of a slide).
+      this.canvas.style.height = `${px}px`;
+      this.polar.style.height = `${(px * this.polar.height) / this.polar.width}px`;
+    }
     for (const view of Object.values(this.extra)) view.canvas.style.width = `${px}px`;
   }
 
@@ -1427,6 +1432,10 @@ async function main() {
   moving();
   renderNow();
   lab.firstRenderMs = performance.now(); // since navigation start
+  if (lab.embed) {
+    fitEmbed(); // again, now that every view has drawn once
+    renderNow();
+  }
   writeHash();
 }
 
