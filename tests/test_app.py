@@ -319,7 +319,7 @@ def test_presenter_mode_enlarges_text_and_keeps_views(qtbot, window, output_dir)
 
 
 def test_tonemap_matches_the_formula():
-    from lab.app.views import BACKGROUND, tonemap
+    from lab.app.views.base import BACKGROUND, tonemap
 
     rng = np.random.default_rng(1)
     image = rng.uniform(0.0, 2.0, (5, 7, 4)).astype(np.float32)

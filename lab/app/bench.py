@@ -94,8 +94,8 @@ def measure(app, window, move, count: int, watch: PaintWatch) -> tuple[np.ndarra
 
 
 def run_bench(app, launched: float) -> int:
+    from lab.app.params import slider_value
     from lab.app.state import load_any
-    from lab.app.widgets import slider_value
     from lab.app.window import MainWindow
 
     window = MainWindow()

@@ -6,8 +6,7 @@ import html
 import time
 from pathlib import Path
 
-import moderngl
-from PyQt6.QtCore import QFileSystemWatcher, Qt, QTimer, pyqtSignal
+from PyQt6.QtCore import Qt, QTimer, pyqtSignal
 from PyQt6.QtGui import QAction, QFont, QFontMetrics, QKeySequence
 from PyQt6.QtWidgets import (
     QApplication,
@@ -23,18 +22,18 @@ from PyQt6.QtWidgets import (
 )
 
 from lab import views
+from lab.app.files import ModelFiles
+from lab.app.model_list import ModelList
+from lab.app.params import ParamPanel
 from lab.app.renderer import AppRenderer
 from lab.app.state import LabState
-from lab.app.views import View
-from lab.app.widgets import ModelList, ParamPanel, SettingSlider
-from lab.glsl import ShaderCompileError, loop_warning
-from lab.measured.model import measured_model
-from lab.models import Model, ModelError, load_model, model_names
-from lab.presets import dump_toml, load_any, read_preset, shipped_presets
+from lab.app.views.base import View
+from lab.app.widgets import SettingSlider
+from lab.models import ModelError, load_model, model_names
+from lab.presets import dump_toml, read_preset, shipped_presets
 
 REFINE_DELAY_MS = 150
 QWIDGETSIZE_MAX = 16777215  # Qt's "no maximum" for a widget's size
-NOT_YET = "it was not added: it is added when a saved version compiles"
 DOCK_AREAS = {
     "right": Qt.DockWidgetArea.RightDockWidgetArea,
     "bottom": Qt.DockWidgetArea.BottomDockWidgetArea,
@@ -52,7 +51,7 @@ SHORT_TITLES = {
 }
 
 
-class MainWindow(QMainWindow):
+class MainWindow(ModelFiles, QMainWindow):
     """The lab. `frame_done(n)` is emitted after each redraw of the visible views."""
 
     frame_done = pyqtSignal(int)
@@ -87,18 +86,7 @@ class MainWindow(QMainWindow):
         self.refine_timer.timeout.connect(self._refine_step)
         self.lab.changed.connect(self.request)
         self.lab.selection_changed.connect(self.request)  # the object and SH views follow it
-        # Watched model files: reload on save, keep the last good version on errors.
-        self.watcher = QFileSystemWatcher(self)
-        self.watcher.fileChanged.connect(self._file_changed)
-        # A file an editor deleted (to write it anew) is waited for through its folder.
-        self.watcher.directoryChanged.connect(self._folder_changed)
-        self.missing_files: set[str] = set()
-        self.pending_files: set[str] = set()
-        self._changed_files: set[str] = set()
-        self.reload_timer = QTimer(self)
-        self.reload_timer.setSingleShot(True)
-        self.reload_timer.setInterval(120)
-        self.reload_timer.timeout.connect(self._reload_changed)
+        self._init_files()
         self.statusBar().showMessage("ready")  # created now so the layout does not jump later
         self.resize(1280, 800)
         self._fitted = False
@@ -333,138 +321,6 @@ class MainWindow(QMainWindow):
         while self._refine:
             self._refine_step()
         self.refine_timer.stop()
-
-    # -- files --------------------------------------------------------------------------
-    def ask_open(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(
-            self,
-            "Open a model",
-            "",
-            "Models (*.glsl *.brdf *.binary);;Measured BRDFs (*.binary);;All files (*)",
-        )
-        if path:
-            self.open_file(path)
-
-    def ask_open_measured(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(
-            self, "Open a measured BRDF", "", "MERL tables (*.binary);;All files (*)"
-        )
-        if path:
-            self.open_measured(path)
-
-    def open_measured(self, path: str | Path):
-        """Add a MERL .binary table as the `measured` model; errors go to the error panel."""
-        path = str(Path(path).resolve())
-        try:
-            model = measured_model(path)
-            self.check(model)
-        except (ModelError, ShaderCompileError, moderngl.Error, ValueError, MemoryError) as err:
-            self.show_error(path, err, "the table was not opened")
-            return None
-        self.statusBar().showMessage(f"opened the measured BRDF {path}", 5000)
-        return self.lab.add(model)
-
-    def check(self, model: Model) -> None:
-        """Compile the model for the views it is drawn in; raises ShaderCompileError."""
-        s = self.lab.settings
-        self.renderer.sphere(model, model.defaults(), (s["theta_i"], s["phi_i"]), size=8)
-        stop = self.renderer.loop_stop()
-        self.renderer.polar(model, model.defaults(), s["theta_i"], s["phi_i"])
-        stop = stop or self.renderer.loop_stop()
-        if stop is not None:  # the guard kept the GPU alive: say which loop it stopped
-            self.show_error(
-                str(model.path),
-                ValueError(loop_warning(model, stop[0])),
-                "the loop guard stopped a loop; the views show what it had computed",
-            )
-
-    def show_error(self, path: str, err: Exception, outcome: str | None = None) -> None:
-        outcome = outcome or "the last good version keeps running"
-        text = str(err)
-        self.errors.setPlainText(f"{path}: {outcome}.\n{text}")
-        self.error_dock.show()
-        self.statusBar().showMessage(text.splitlines()[0] if text else "error", 10000)
-
-    def error_text(self) -> str:
-        return self.errors.toPlainText()
-
-    def open_file(self, path: str | Path):
-        """Add a model from a file and watch it; errors go to the error panel."""
-        if str(path).endswith(".binary"):
-            return self.open_measured(path)  # data, not code: nothing to watch
-        path = str(Path(path).resolve())
-        self.watch(path)
-        try:
-            model = load_any(path)
-            self.check(model)
-        except (ModelError, ShaderCompileError) as err:
-            self.pending_files.add(path)
-            self.show_error(path, err, NOT_YET)
-            return None
-        self.pending_files.discard(path)
-        self.statusBar().showMessage(f"opened {path} (watched for changes)", 5000)
-        return self.lab.add(model, from_file=True)
-
-    def watch(self, path: str) -> None:
-        """Watch a file; while it does not exist, watch its folder for it to come back."""
-        if Path(path).exists():
-            self.missing_files.discard(path)
-            if path not in self.watcher.files():
-                self.watcher.addPath(path)
-            return
-        self.missing_files.add(path)
-        folder = str(Path(path).parent)
-        if Path(folder).is_dir() and folder not in self.watcher.directories():
-            self.watcher.addPath(folder)
-
-    def _folder_changed(self, folder: str) -> None:
-        for path in sorted(self.missing_files):
-            if str(Path(path).parent) == folder and Path(path).exists():
-                self.missing_files.discard(path)
-                self._file_changed(path)
-        if not any(str(Path(p).parent) == folder for p in self.missing_files):
-            self.watcher.removePath(folder)
-
-    def _file_changed(self, path: str) -> None:
-        self._changed_files.add(path)
-        self.reload_timer.start()
-
-    def _reload_changed(self) -> None:
-        for path in sorted(self._changed_files):
-            self.reload(path)
-        self._changed_files.clear()
-
-    def reload(self, path: str) -> None:
-        """Recompile a watched file; on error keep the last good version running."""
-        self.watch(path)  # editors that save by renaming drop the watch
-        states = [
-            m for m in self.lab.models if m.from_file and str(Path(m.model.path).resolve()) == path
-        ]
-        if not states and path not in self.pending_files:
-            return
-        try:
-            model = load_any(path)
-            self.check(model)
-        except (ModelError, ShaderCompileError) as err:
-            for state in states:
-                state.error = str(err)
-            # A file that never compiled has no last good version to keep running.
-            self.show_error(path, err, None if states else NOT_YET)
-            self.lab.changed.emit()
-            self.file_reloaded.emit(path)
-            return
-        self.errors.clear()
-        self.error_dock.hide()
-        if path in self.pending_files:
-            self.pending_files.discard(path)
-            self.lab.add(model, from_file=True)
-        for state in states:
-            old = state.model
-            state.error = ""
-            state.replace_model(model)
-            self.renderer.forget(old) if old.code != model.code else None
-        self.statusBar().showMessage(f"reloaded {path}", 4000)
-        self.file_reloaded.emit(path)
 
     # -- presets ------------------------------------------------------------------------
     def preset_dict(self, path: Path | None = None) -> dict:

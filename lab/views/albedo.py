@@ -9,7 +9,7 @@ VIEW = ViewSpec(
     name="albedo",
     title="Directional albedo",
     dock=("bottom", 0),
-    widget="lab.app.views:AlbedoView",
+    widget="lab.app.views.albedo:AlbedoView",
     plot=matplotlib_plot("albedo"),
     order=60,
 )

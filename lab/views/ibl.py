@@ -33,7 +33,7 @@ VIEW = ViewSpec(
     },
     dock=("right", 0),
     tab_of="sphere",  # behind the lit spheres: its passes run only while it is in front
-    widget="lab.app.ibl_view:IBLView",
+    widget="lab.app.views.ibl:IBLView",
     plot=plot,
     order=80,
 )

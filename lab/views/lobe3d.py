@@ -439,7 +439,7 @@ VIEW = ViewSpec(
         "lobe_zoom": Setting(1.0, 0.2, 8.0, "zoom"),
     },
     dock=("right", 1),
-    widget="lab.app.views:LobeView",
+    widget="lab.app.views.lobe3d:LobeView",
     plot=plot,
     order=30,
 )

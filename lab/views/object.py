@@ -20,6 +20,6 @@ VIEW = ViewSpec(
         "pitch": Setting(0.5, -1.5, 1.5, "pitch"),
     },
     dock=("bottom", 0),
-    widget="lab.app.views:ObjectView",
+    widget="lab.app.views.object:ObjectView",
     order=70,
 )

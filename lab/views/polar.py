@@ -13,7 +13,7 @@ VIEW = ViewSpec(
         "polar_cos": Setting(False, label="f_r · cos θo"),
     },
     dock=("right", 1),
-    widget="lab.app.views:PolarView",
+    widget="lab.app.views.polar:PolarView",
     plot=matplotlib_plot("polar"),
     order=20,
 )

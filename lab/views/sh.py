@@ -9,6 +9,6 @@ VIEW = ViewSpec(
     title="Spherical harmonics",
     settings={"sh_order": Setting(8, 0, 16, "order")},
     dock=("right", 1),
-    widget="lab.app.sh_view:SHView",
+    widget="lab.app.views.sh:SHView",
     order=40,
 )

@@ -10,7 +10,7 @@ VIEW = ViewSpec(
     title="Image slice (θh, θd)",
     settings={"phi_d": Setting(90.0, 0.0, 180.0, "φd", 1.0)},
     dock=("bottom", 0),
-    widget="lab.app.views:SliceView",
+    widget="lab.app.views.slice:SliceView",
     plot=matplotlib_plot("slice"),
     order=50,
 )

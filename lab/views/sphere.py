@@ -34,7 +34,7 @@ VIEW = ViewSpec(
         "multiply_cos": Setting(True, label="× N·L"),
     },
     dock=("right", 0),
-    widget="lab.app.views:SphereView",
+    widget="lab.app.views.sphere:SphereView",
     plot=plot,
     order=10,
 )

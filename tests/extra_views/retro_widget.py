@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from PyQt6.QtWidgets import QLabel
 
-from lab.app.views import View
+from lab.app.views.base import View
 
 from .retro import retro_values
 

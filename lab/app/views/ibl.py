@@ -25,7 +25,7 @@ from PyQt6.QtWidgets import (
     QSplitter,
 )
 
-from lab.app.views import ImageRow, View, state_key, tonemap
+from lab.app.views.base import ImageRow, View, state_key, tonemap
 from lab.app.widgets import SettingCombo, SettingSlider
 from lab.constants import LUMA
 from lab.glsl import ShaderCompileError

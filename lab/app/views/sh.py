@@ -19,7 +19,7 @@ from PyQt6.QtWidgets import QLabel, QSpinBox
 
 from lab import plotscale
 from lab.app.state import ModelState, Settings
-from lab.app.views import LUMA, View, look_key, pen, state_key
+from lab.app.views.base import LUMA, View, look_key, pen, state_key
 from lab.app.widgets import LiveText
 from lab.glsl import ShaderCompileError
 from lab.measured import sh

@@ -1,0 +1,190 @@
+"""The (θh, θd) slice's widget: an image of f_r over the half and difference angles."""
+
+from __future__ import annotations
+
+import numpy as np
+from PyQt6.QtCore import QRect, Qt
+from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
+from PyQt6.QtWidgets import QWidget
+
+from lab.app.state import ModelState
+from lab.app.views.base import BACKGROUND, View, look_key, opaque, state_key
+from lab.app.widgets import SettingSlider
+
+
+class SliceCanvas(QWidget):
+    """One square image per model over theta_h (x) and theta_d (y), both axes 0..90 deg.
+
+    Drawn by hand so the axes can never drift or stretch: every plot is a square at the
+    same scale, whatever the widget's shape.
+    """
+
+    def __init__(self):
+        super().__init__()
+        self.images: list[tuple[QImage, str, str]] = []
+        self.setMinimumSize(160, 120)
+        opaque(self)
+
+    def axis_font(self) -> QFont:
+        """Tick and axis labels a little smaller than the titles (presenter fonts too)."""
+        font = QFont(self.font())
+        font.setPointSizeF(max(self.font().pointSizeF() * 0.85, 6.0))
+        return font
+
+    def margins(self) -> tuple[int, int, int, int]:
+        """Left, top, right and bottom room around each plot for titles, ticks, labels."""
+        fm = QFontMetrics(self.axis_font())
+        line = fm.height()
+        title = QFontMetrics(self.font()).height()
+        return (fm.horizontalAdvance("90°") + line + 10, title + 4, 12, 2 * line + 6)
+
+    def plot_rects(self, count: int | None = None) -> list[QRect]:
+        """Where each image goes: squares of one size in the grid (columns x rows) that
+        makes them largest, centred."""
+        n = max(count if count is not None else len(self.images), 1)
+        left, top, right, bottom = self.margins()
+        best = (0, 1, 1)
+        for cols in range(1, n + 1):
+            rows = -(-n // cols)
+            side = min(self.width() // cols - left - right, self.height() // rows - top - bottom)
+            if side > best[0]:
+                best = (side, cols, rows)
+        side, cols, rows = best
+        side = max(side, 16)
+        cell_w, cell_h = left + side + right, top + side + bottom
+        x0 = (self.width() - cols * cell_w) // 2
+        y0 = (self.height() - rows * cell_h) // 2
+        return [
+            QRect(x0 + (i % cols) * cell_w + left, y0 + (i // cols) * cell_h + top, side, side)
+            for i in range(n)
+        ]
+
+    def paintEvent(self, event) -> None:
+        painter = QPainter(self)
+        painter.fillRect(self.rect(), QColor(*BACKGROUND))
+        title_metrics = QFontMetrics(self.font())
+        font = self.axis_font()
+        fm = QFontMetrics(font)
+        line = fm.height()
+        axis = QColor(170, 170, 170)
+        for rect, (image, caption, color) in zip(self.plot_rects(), self.images, strict=False):
+            if image.width() == rect.width() and image.height() == rect.height():
+                painter.drawImage(rect.topLeft(), image)
+            else:
+                painter.drawImage(rect, image)
+            painter.setFont(self.font())
+            painter.setPen(QColor(color))
+            room = rect.width() + 40
+            painter.drawText(
+                QRect(
+                    rect.left() - 20,
+                    rect.top() - title_metrics.height() - 3,
+                    room,
+                    title_metrics.height() + 2,
+                ),
+                Qt.AlignmentFlag.AlignCenter,
+                title_metrics.elidedText(caption, Qt.TextElideMode.ElideRight, room),
+            )
+            painter.setFont(font)
+            painter.setPen(QPen(axis, 1))
+            painter.drawRect(rect.adjusted(0, 0, -1, -1))
+            room = rect.width() / fm.horizontalAdvance("90° ")
+            ticks = (0, 30, 60, 90) if room >= 4.5 else (0, 45, 90) if room >= 3 else (0, 90)
+            for tick in ticks:
+                x = rect.left() + round(tick / 90 * (rect.width() - 1))
+                y = rect.bottom() - round(tick / 90 * (rect.height() - 1))
+                painter.drawLine(x, rect.bottom(), x, rect.bottom() + 3)
+                painter.drawLine(rect.left() - 3, y, rect.left(), y)
+                painter.drawText(
+                    QRect(x - 30, rect.bottom() + 4, 60, line),
+                    Qt.AlignmentFlag.AlignHCenter,
+                    f"{tick}°",
+                )
+                painter.drawText(
+                    QRect(rect.left() - 64, y - line // 2, 60, line),
+                    Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
+                    f"{tick}°",
+                )
+            painter.drawText(
+                QRect(rect.left(), rect.bottom() + 4 + line, rect.width(), line),
+                Qt.AlignmentFlag.AlignHCenter,
+                "θh",
+            )
+            painter.save()
+            painter.translate(rect.left() - fm.horizontalAdvance("90°") - 8, rect.center().y())
+            painter.rotate(-90)
+            painter.drawText(
+                QRect(-rect.height() // 2, -line, rect.height(), line),
+                Qt.AlignmentFlag.AlignCenter,
+                "θd",
+            )
+            painter.restore()
+        painter.end()
+
+
+class SliceView(View):
+    """f_r over (theta_h, theta_d) at a chosen phi_d, one image per visible model."""
+
+    title = "Image slice (θh, θd)"
+    name = "slice"
+    FAST_SIZE = 96
+
+    def __init__(self, lab, renderer):
+        super().__init__(lab, renderer)
+        s = lab.settings
+        phi_d = SettingSlider.of(s, "phi_d")
+        phi_d.setToolTip(
+            "the slice's difference azimuth; the images use the spheres' exposure and gamma"
+        )
+        self.tools.addWidget(phi_d, 1)
+        self.canvas = SliceCanvas()
+        self.layout_.addWidget(self.canvas, 1)
+        self.data: list[tuple[ModelState, np.ndarray]] = []
+
+    def axes(self) -> list[tuple[tuple[float, float], tuple[float, float], QRect]]:
+        """Each plot's (theta_h range, theta_d range, rectangle on screen)."""
+        return [
+            ((0.0, 90.0), (0.0, 90.0), rect)
+            for rect in self.canvas.plot_rects(len(self.canvas.images))
+        ][: len(self.canvas.images)]
+
+    def side(self) -> int:
+        rects = self.canvas.plot_rects(len(self.lab.visible_models()))
+        return min(max(rects[0].width(), 32), 256)
+
+    def inputs(self) -> tuple:
+        s = self.lab.settings
+        return (
+            tuple(look_key(m) for m in self.lab.visible_models()),
+            s["phi_d"],
+            s["exposure"],
+            s["gamma"],
+            self.side(),
+        )
+
+    def draw(self, fast: bool) -> bool:
+        s = self.lab.settings
+        full = self.side()
+        small = min(full, self.FAST_SIZE)
+        self.data, images = [], []
+        coarse = False
+        tone = (s["exposure"], s["gamma"])
+        for state in self.lab.visible_models():
+            key = state_key(state, s["phi_d"])
+            image, rough = self.best(
+                state,
+                fast,
+                (*key, small),
+                (*key, full),
+                lambda use_full, st=state: self.renderer.slice(
+                    st.model, st.values, s["phi_d"], full if use_full else small
+                ),
+            )
+            coarse = coarse or rough
+            if image is None:
+                continue
+            self.data.append((state, image))
+            images.append((self.toned_image(state, image, tone), state.label, state.color))
+        self.canvas.images = images
+        self.canvas.update()
+        return coarse
