@@ -92,8 +92,10 @@ def ensure_venv(with_tests: bool) -> None:
     if not venv_python().exists():
         say(f"creating the virtual environment {VENV}")
         subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-    # The stamp records which pyproject.toml was installed, and whether with test extras.
-    digest = hashlib.sha256((ROOT / "pyproject.toml").read_bytes()).hexdigest()
+    # The stamp records which pyproject.toml and requirement lists were installed, and
+    # whether with test extras: a dependency added to a list reinstalls too.
+    sources = [ROOT / "pyproject.toml", *sorted((ROOT / "lab").glob("requirements-*.txt"))]
+    digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources)).hexdigest()
     have = STAMP.read_text().split() if STAMP.exists() else []
     if have and have[0] == digest and (not with_tests or "test" in have):
         return
