@@ -5,7 +5,7 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
-from lab import diagrams, plots
+from lab import diagrams, plots, views
 from lab.models import load_model, model_names
 from lab.render import Renderer
 
@@ -49,7 +49,7 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
             )
         )
     # Off-specular peak: at grazing incidence Cook-Torrance peaks beyond the mirror angle.
-    fig, ax = plots._figure(polar=True)
+    fig, ax = plots.figure(polar=True)
     theta_i = 75.0
     lobes = [
         (renderer.polar(name, values, theta_i, cos_weighted=True), name, color)
@@ -90,7 +90,8 @@ def gallery(outdir: str | Path, renderer: Renderer | None = None) -> Path:
     for name in model_names():
         model = load_model(name)
         _sphere(renderer, outdir / f"{name}_sphere.png", name, {}, light=(30.0, 0.0))
-        plots.save_view(renderer, "polar", model, {}, 30.0, 0.0, outdir / f"{name}_polar.png")
+        polar = views.PlotJob(renderer, model, {}, 30.0, 0.0, outdir / f"{name}_polar.png")
+        views.view("polar").plot(polar)
         rows.append(
             f"<tr><td><b>{html.escape(name)}</b><br>{html.escape(model.title)}</td>"
             f"<td><img src='{name}_sphere.png' width=256></td>"

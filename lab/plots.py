@@ -1,4 +1,7 @@
-"""PNG output: tone-mapped renders and labelled plots of the views (matplotlib)."""
+"""What the views' PNG plots share: tone-mapped images, luminance, a matplotlib figure
+(imported only when one is drawn), the polar half-disc and saving at a given width.
+
+Each view's own plot lives in its module in lab/views/."""
 
 from __future__ import annotations
 
@@ -8,7 +11,6 @@ import numpy as np
 
 from lab import plotscale
 from lab.constants import LUMA
-from lab.models import Model
 
 
 def to_srgb8(rgb: np.ndarray, exposure: float = 0.0, gamma: float | None = None) -> np.ndarray:
@@ -37,7 +39,8 @@ def luminance(rgb: np.ndarray) -> np.ndarray:
     return rgb @ np.array(LUMA, dtype=rgb.dtype)
 
 
-def _figure(polar: bool = False, three_d: bool = False):
+def figure(polar: bool = False, three_d: bool = False):
+    """A 6 x 4.5 inch matplotlib figure and its axes (matplotlib is imported here, when used)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -169,97 +172,10 @@ def separate_labels(ax, texts: list) -> None:
             text.set_position((angle, radius))
 
 
-def save_render(
-    renderer,
-    view: str,
-    model: Model,
-    values,
-    theta: float,
-    phi: float,
-    out: str | Path,
-    size: int = 512,
-    exposure: float = 0.0,
-    lights=None,
-    ambient=(0.0, 0.0, 0.0),
-) -> str:
-    """Any view as a PNG: the sphere as an image (with `lights` and `ambient` when given),
-    the others as labelled plots for the light (theta, phi). Returns '' or, for a sphere
-    with NaN or Inf pixels, the line that says how many and where."""
-    if view == "sphere":
-        image = renderer.sphere(
-            model, values, (theta, phi), size=size, lights=lights, ambient=ambient
-        )
-        save_image(image, out, exposure)
-        from lab.nonfinite import sphere_report
-        from lab.render import direction
-
-        return sphere_report(image, direction(theta, phi))
-    save_view(renderer, view, model, values, theta, phi, out, size=size)
-    return ""
-
-
-def save_view(
-    renderer,
-    view: str,
-    model: Model,
-    values,
-    theta: float,
-    phi: float,
-    out: str | Path,
-    size: int = 512,
-) -> None:
-    """Render a plot view (polar, lobe3d, slice, albedo) of one model to a readable PNG."""
+def save_figure(fig, out: str | Path, size: int = 512) -> None:
+    """Save `fig` `size` pixels wide (320 at least, to stay legible) and free it."""
     import matplotlib.pyplot as plt
 
-    if view == "polar":
-        fig, ax = _figure(polar=True)
-        lobe = renderer.polar(model, values, theta, phi)
-        draw_polar(ax, [(lobe, model.name, None)], theta, "f_r (luminance)")
-    elif view == "lobe3d":
-        from lab.views.lobe3d import save_lobe3d
-
-        save_lobe3d(renderer, model, values, theta, phi, out, width=max(size, 320))
-        return
-    elif view == "slice":
-        fig, ax = _figure()
-        image = luminance(
-            renderer.slice(model, values, phi_d=phi if phi else 90.0, size=min(size, 512)).astype(
-                np.float64
-            )
-        )
-        shown = ax.imshow(
-            np.log10(np.maximum(image, 1e-4)), extent=(0, 90, 0, 90), cmap="magma", aspect="equal"
-        )
-        fig.colorbar(shown, label="log10 f_r")
-        ax.set_xlabel("θh (degrees)")
-        ax.set_ylabel("θd (degrees)")
-        ax.set_title(f"{model.name}: image slice at φd = {phi if phi else 90.0:g}°", fontsize=10)
-    elif view == "albedo":
-        fig, ax = _figure()
-        thetas = np.arange(0.0, 90.0, 1.0)
-        a = renderer.albedo(model, values, thetas, phi)
-        for channel, color in enumerate(("tab:red", "tab:green", "tab:blue")):
-            ax.plot(thetas, a[:, channel], color=color, label="RGB"[channel])
-        ax.axhline(1.0, color="black", lw=1, ls="--", label="albedo = 1")
-        gain = a.max(axis=1) > 1.0
-        if gain.any():
-            ax.fill_between(
-                thetas,
-                1.0,
-                a.max(axis=1),
-                where=gain,
-                color="red",
-                alpha=0.2,
-                label="energy gain (not physical)",
-            )
-        ax.set_xlabel("θi (degrees)")
-        ax.set_ylabel("directional albedo")
-        ax.set_ylim(0, max(1.1, float(a.max()) * 1.05))
-        ax.legend(fontsize=8)
-        ax.set_title(f"{model.name}: directional albedo", fontsize=10)
-    else:
-        raise ValueError(f"unknown view {view!r}")
     fig.tight_layout()
-    # The figure is 6 inches wide: this dpi makes it `size` pixels (320 at least, to stay legible).
     fig.savefig(out, dpi=max(size, 320) / fig.get_size_inches()[0])
     plt.close(fig)

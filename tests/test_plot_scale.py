@@ -64,7 +64,7 @@ def _figure_texts(theta_i: float):
     from lab.render import Renderer
 
     renderer = Renderer()
-    fig, ax = plots._figure(polar=True)
+    fig, ax = plots.figure(polar=True)
     lobe = renderer.polar("cook_torrance", load_model("cook_torrance").defaults(), theta_i)
     plots.draw_polar(ax, [(lobe, "cook_torrance", None)], theta_i, "f_r")
     fig.tight_layout()

@@ -84,7 +84,7 @@ def polar_image(renderer, model, values, theta: float, phi: float) -> np.ndarray
     """The polar lobe as an RGBA uint8 image (matplotlib), PANEL x PANEL."""
     from lab import plots
 
-    fig, ax = plots._figure(polar=True)
+    fig, ax = plots.figure(polar=True)
     fig.set_size_inches(PANEL / 100, PANEL / 100)
     fig.set_dpi(100)
     lobe = renderer.polar(model, values, theta, phi)

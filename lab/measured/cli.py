@@ -3,6 +3,7 @@ measured-bench."""
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 FIT_MODELS = ("ward", "blinn_phong", "cook_torrance", "ggx")
@@ -151,7 +152,7 @@ def cmd_sh(args) -> int:
 
 
 def cmd_render_measured(args) -> int:
-    from lab import plots
+    from lab import views
     from lab.errors import check_output, parse_light
     from lab.measured.figures import filter_figure
     from lab.measured.model import measured_model
@@ -166,9 +167,10 @@ def cmd_render_measured(args) -> int:
     else:
         values = {"interpolation": args.interpolation, "gain": args.gain}
         model = measured_model(table)
-        plots.save_render(
-            renderer, args.view, model, values, theta, phi, out, args.size, args.exposure
-        )
+        job = views.PlotJob(renderer, model, values, theta, phi, out, args.size, args.exposure)
+        views.view(args.view).plot(job)
+        for warning in job.warnings:
+            print(f"brdf-lab: warning: {warning}", file=sys.stderr)
     print(f"wrote {out}")
     return 0
 

@@ -2,14 +2,44 @@
 
 from __future__ import annotations
 
-from lab.views import ViewSpec
-from lab.views._plots import matplotlib_plot
+import numpy as np
+
+from lab import plots
+from lab.views import PlotJob, ViewSpec
+
+
+def plot(job: PlotJob) -> None:
+    """The albedo's R, G and B against θi, with the albedo = 1 line and any gain above it."""
+    fig, ax = plots.figure()
+    thetas = np.arange(0.0, 90.0, 1.0)
+    a = job.renderer.albedo(job.model, job.values, thetas, job.phi_i)
+    for channel, color in enumerate(("tab:red", "tab:green", "tab:blue")):
+        ax.plot(thetas, a[:, channel], color=color, label="RGB"[channel])
+    ax.axhline(1.0, color="black", lw=1, ls="--", label="albedo = 1")
+    gain = a.max(axis=1) > 1.0
+    if gain.any():
+        ax.fill_between(
+            thetas,
+            1.0,
+            a.max(axis=1),
+            where=gain,
+            color="red",
+            alpha=0.2,
+            label="energy gain (not physical)",
+        )
+    ax.set_xlabel("θi (degrees)")
+    ax.set_ylabel("directional albedo")
+    ax.set_ylim(0, max(1.1, float(a.max()) * 1.05))
+    ax.legend(fontsize=8)
+    ax.set_title(f"{job.model.name}: directional albedo", fontsize=10)
+    plots.save_figure(fig, job.out, job.size)
+
 
 VIEW = ViewSpec(
     name="albedo",
     title="Directional albedo",
     dock=("bottom", 0),
     widget="lab.app.views.albedo:AlbedoView",
-    plot=matplotlib_plot("albedo"),
+    plot=plot,
     order=60,
 )

@@ -2,8 +2,17 @@
 
 from __future__ import annotations
 
-from lab.views import Setting, ViewSpec
-from lab.views._plots import matplotlib_plot
+from lab import plots
+from lab.views import PlotJob, Setting, ViewSpec
+
+
+def plot(job: PlotJob) -> None:
+    """The model's lobe on the polar half-disc, light on the right."""
+    fig, ax = plots.figure(polar=True)
+    lobe = job.renderer.polar(job.model, job.values, job.theta_i, job.phi_i)
+    plots.draw_polar(ax, [(lobe, job.model.name, None)], job.theta_i, "f_r (luminance)")
+    plots.save_figure(fig, job.out, job.size)
+
 
 VIEW = ViewSpec(
     name="polar",
@@ -14,6 +23,6 @@ VIEW = ViewSpec(
     },
     dock=("right", 1),
     widget="lab.app.views.polar:PolarView",
-    plot=matplotlib_plot("polar"),
+    plot=plot,
     order=20,
 )
