@@ -6,6 +6,7 @@ layer may raise these errors and the front ends decide how to show them.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 
@@ -37,7 +38,7 @@ def parse_rgb(text: str, what: str) -> tuple[float, float, float]:
         numbers = []
     if len(numbers) == 1:
         numbers *= 3
-    if len(numbers) != 3 or min(numbers) < 0:
+    if len(numbers) != 3 or not all(math.isfinite(x) and x >= 0 for x in numbers):
         raise UsageError(f"{what} {text!r} is malformed: write R,G,B (or one grey value), >= 0")
     return tuple(numbers)
 

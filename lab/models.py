@@ -156,6 +156,35 @@ class Model:
     def defaults(self) -> dict[str, Value]:
         return {p.name: p.default for p in self.params.values()}
 
+    def header(self) -> dict:
+        """The parsed header as JSON data, shaped as the web page's parser makes it
+        (static/header.js): the manifest carries the library's so the page need not parse."""
+        params = [
+            {
+                "name": p.name,
+                "kind": p.kind,
+                "default": list(p.default) if isinstance(p.default, tuple) else p.default,
+                "doc": p.doc,
+                "minimum": p.minimum,
+                "maximum": p.maximum,
+                "scale": p.scale,
+                "choices": list(p.choices),
+                "line": p.line,
+            }
+            for p in self.params.values()
+        ]
+        return {
+            "name": self.name,
+            "title": self.title,
+            "formula": list(self.formula),
+            "source": list(self.source),
+            "includes": list(self.includes),
+            "delta": self.delta,
+            "ambient": self.ambient,
+            "properties": list(self.properties),
+            "params": params,
+        }
+
     def resolve(self, values: dict[str, Value] | None = None) -> dict[str, Value]:
         """Defaults overridden by `values`, each checked against the header."""
         resolved = self.defaults()

@@ -12,7 +12,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from lab import constants, views
-from lab.models import SHADER_DIR, ModelError, model_names
+from lab.models import SHADER_DIR, ModelError, model_names, parse_model
 from lab.presets import read_preset, shipped_presets
 from lab.resources import data_dir
 
@@ -34,12 +34,27 @@ def presets() -> list[dict]:
     return out
 
 
+def library_headers() -> dict[str, dict]:
+    """Each library model's parsed header (Model.header), or {"error": ...} for a file
+    whose header does not parse, labelled as the page labels it."""
+    out = {}
+    for name in model_names():
+        label = f"shaders/brdfs/{name}.glsl"
+        try:
+            code = (SHADER_DIR / "brdfs" / f"{name}.glsl").read_text(encoding="utf-8")
+            out[name] = parse_model(code, label, name).header()
+        except ModelError as err:
+            out[name] = {"error": str(err)}
+    return out
+
+
 def manifest() -> dict:
-    """What the page loads: the model names, every shader file (paths under shaders/),
-    the lab's constants and the shipped presets."""
+    """What the page loads: the model names and their parsed headers, every shader file
+    (paths under shaders/), the lab's constants and the shipped presets."""
     files = sorted(p.relative_to(SHADER_DIR).as_posix() for p in SHADER_DIR.rglob("*.glsl"))
     return {
         "models": model_names(),
+        "library": library_headers(),
         "files": files,
         "constants": constants.as_dict(),
         "views": views.manifest(),

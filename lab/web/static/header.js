@@ -6,7 +6,7 @@ export const PARAM_TYPES = ["float", "color", "bool", "enum"];
 const IDENTIFIER = /^[A-Za-z_][A-Za-z0-9_]*$/;
 // Python's float() syntax (digits may be grouped with single underscores).
 const DIGITS = "\\d(?:_?\\d)*";
-const PY_FLOAT = new RegExp(
+export const PY_FLOAT = new RegExp(
   `^[+-]?(?:(?:${DIGITS}(?:\\.(?:${DIGITS})?)?|\\.${DIGITS})(?:[eE][+-]?${DIGITS})?` +
     "|inf|infinity|nan)$",
   "i",

@@ -1,6 +1,8 @@
 // The web lab: model files from shaders/, headers parsed in the page, one WebGL2 program
 // per model, view and enum choice, assembled exactly as the desktop lab assembles them.
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
+import { direction, planeOfIncidence } from "./geometry.js";
+import { SLIDER_STEPS, parseRgb, parseValue, sliderToValue, valueToSlider } from "./values.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { ShaderEditor } from "./edit.js";
@@ -9,7 +11,6 @@ import { ExerciseMode } from "./exercise.js";
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
-const SLIDER_STEPS = 1000;
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
 // Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
@@ -30,15 +31,6 @@ void main() {
     frag_color = vec4(srgb(v.rgb * u_scale) * v.a, v.a);
 }
 `;
-
-/** Unit vector for angles in degrees (theta from z, phi from x), as lab.render.direction. */
-export function direction(thetaDeg, phiDeg) {
-  const t = (thetaDeg * Math.PI) / 180;
-  const p = (phiDeg * Math.PI) / 180;
-  // cos(90 deg) is 6e-17: snapped to 0 so theta = 90 lies on the horizon, as in Python.
-  const snap = (x) => (Math.abs(x) < 1e-12 ? 0 : x);
-  return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)].map(snap);
-}
 
 // -- shared state -------------------------------------------------------------------------
 const lab = {
@@ -81,48 +73,12 @@ function el(tag, attrs = {}, ...children) {
 }
 
 // -- values <-> text ----------------------------------------------------------------------
-function sliderToValue(p, position) {
-  const t = position / SLIDER_STEPS;
-  if (p.scale === "log") return p.minimum * Math.pow(p.maximum / p.minimum, t);
-  return p.minimum + (p.maximum - p.minimum) * t;
-}
-function valueToSlider(p, value) {
-  const t = p.scale === "log"
-    ? Math.log(value / p.minimum) / Math.log(p.maximum / p.minimum)
-    : (value - p.minimum) / (p.maximum - p.minimum);
-  return Math.round(Math.min(Math.max(t, 0), 1) * SLIDER_STEPS);
-}
 const round = (x) => Number(x.toPrecision(4));
 function valueText(p, value) {
   if (p.kind === "color") return value.map((c) => formatG(c)).join(",");
   if (p.kind === "bool") return value ? "1" : "0";
   if (p.kind === "float") return formatG(value);
   return String(value);
-}
-/** Text (hash or text box) -> checked value; throws Error with a one-line message. */
-function parseValue(p, text) {
-  text = text.trim();
-  if (p.kind === "enum") {
-    if (!p.choices.includes(text)) throw new Error(`${p.name} must be one of ${p.choices.join(", ")}`);
-    return text;
-  }
-  if (p.kind === "bool") {
-    if (["1", "true", "yes", "on"].includes(text.toLowerCase())) return true;
-    if (["0", "false", "no", "off"].includes(text.toLowerCase())) return false;
-    throw new Error(`${p.name} is a bool: use 1 or 0`);
-  }
-  let numbers = text.split(",").map(Number);
-  if (text === "" || numbers.some((x) => !Number.isFinite(x))) throw new Error(`${p.name} needs numbers, not '${text}'`);
-  const inRange = (x) => x >= p.minimum && x <= p.maximum;
-  if (p.kind === "color") {
-    if (numbers.length === 1) numbers = [numbers[0], numbers[0], numbers[0]];
-    if (numbers.length !== 3 || !numbers.every(inRange)) throw new Error(`${p.name} is a color: r,g,b each in 0..1`);
-    return numbers;
-  }
-  if (numbers.length !== 1 || !inRange(numbers[0])) {
-    throw new Error(`${p.name} must be a number in [${formatG(p.minimum)}, ${formatG(p.maximum)}]`);
-  }
-  return numbers[0];
 }
 const toHex = (rgb) => "#" + rgb.map((c) => Math.round(Math.min(Math.max(c, 0), 1) * 255).toString(16).padStart(2, "0")).join("");
 const fromHex = (hex) => [1, 3, 5].map((i) => round(parseInt(hex.slice(i, i + 2), 16) / 255));
@@ -576,10 +532,10 @@ class Panel {
     const V = new Float32Array(4 * POLAR_STEPS);
     const Ld = direction(theta, phi);
     // The plane of the plot: the plane of incidence turned by phi_o about the normal.
+    const plane = planeOfIncidence(phi + lab.phiO).V;
     for (let i = 0; i < POLAR_STEPS; i++) {
-      const thetaO = i - 90; // positive: the far side from the light (the mirror side)
       L.set(Ld, 4 * i);
-      V.set(direction(Math.abs(thetaO), (thetaO >= 0 ? phi + 180 : phi) + lab.phiO), 4 * i);
+      V.set(plane[i], 4 * i);
     }
     const compiled = this.program("probe");
     const textures = [floatTexture(gl, POLAR_STEPS, L), floatTexture(gl, POLAR_STEPS, V)];
@@ -1052,13 +1008,6 @@ function removePanel(panel) {
 }
 
 // -- URL hash: model=NAME&PARAM=VALUE...&model=NAME2...&light=THETA,PHI[,R,G,B]...&ambient=R,G,B
-/** "r,g,b" (or one grey value) in 0..1 -> [r, g, b], or null. */
-function parseRgb(text) {
-  let rgb = text.split(",").map(Number);
-  if (rgb.length === 1) rgb = [rgb[0], rgb[0], rgb[0]];
-  return rgb.length === 3 && rgb.every((c) => Number.isFinite(c) && c >= 0) ? rgb : null;
-}
-
 function readHash() {
   // An address holds the whole state: what it leaves out has its default.
   lab.lights = [{ ...DEFAULT_LIGHT, rgb: [...DEFAULT_LIGHT.rgb] }];
@@ -1273,7 +1222,15 @@ async function load() {
   lab.exerciseList = manifest.exercises || [];
   const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
   manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
-  for (const name of manifest.models) addModelText(`shaders/brdfs/${name}.glsl`, lab.files[`brdfs/${name}.glsl`], name);
+  // The library's headers come parsed (lab/models.py, checked against header.js by
+  // tests/test_web_mirrors.py): the page parses only the files a user opens or edits.
+  for (const name of manifest.models) {
+    const path = `shaders/brdfs/${name}.glsl`;
+    const header = manifest.library[name];
+    if (header.error) lab.modelErrors[name] = header.error;
+    else lab.models[name] = { ...header, path, code: lab.files[`brdfs/${name}.glsl`] };
+    if (!lab.order.includes(name)) lab.order.push(name);
+  }
 }
 
 // Keys a presenter's clicker or keyboard sends to move between slides.

@@ -1,0 +1,238 @@
+"""The web lab's JavaScript mirrors of Python code agree with it on a table of cases.
+
+The page's directions and plane of incidence (static/geometry.js, lab/geometry.py), its
+value parsing and sliders (static/values.js: Param.parse, parse_rgb, the app's sliders) and
+the library headers the manifest carries (parsed in Python, used by the page without
+parsing) are each run in node and compared with the Python on the same inputs. The header
+parser and the GLSL assembly have their own fixtures (test_web_fixtures.py).
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lab.errors import UsageError, parse_rgb
+from lab.geometry import direction, plane_of_incidence
+from lab.models import MODEL_DIR, ModelError, Param, model_names
+from lab.web.site import manifest
+
+ROOT = Path(__file__).resolve().parent.parent
+CHECKER = ROOT / "lab" / "web" / "check_mirrors.mjs"
+
+PARAMS = [
+    Param("roughness", "float", 0.5, minimum=0.0, maximum=1.0),
+    Param("ke", "float", 10.0, minimum=1.0, maximum=1000.0, scale="log"),
+    Param("shift", "float", 0.0, minimum=-2.5, maximum=2.5),
+    Param("kd", "color", (0.5, 0.5, 0.5)),
+    Param("metal", "bool", False),
+    Param("distribution", "enum", "beckmann", choices=("beckmann", "ggx")),
+]
+TEXTS = [
+    "0.5",
+    " 0.5 ",
+    "+0.5",
+    "1",
+    "0",
+    "-0",
+    "-0.1",
+    "2",
+    "2.5",
+    "-2.5",
+    "1000",
+    "1000.01",
+    "1e-3",
+    "1E2",
+    ".5",
+    "5.",
+    "1_0",
+    "1__0",
+    "_1",
+    "0x10",
+    "0b1",
+    "1e400",
+    "0.5e",
+    "e5",
+    "",
+    " ",
+    "nan",
+    "inf",
+    "-inf",
+    "Infinity",
+    "abc",
+    "0.5,0.5",
+    "0.1, 0.2, 0.3",
+    "0.1,,0.3",
+    "0.1,0.2,0.3,0.4",
+    "1,1,1",
+    "0.2 0.3",
+    "true",
+    "True",
+    "yes",
+    "ON",
+    "off",
+    "1.0",
+    "beckmann",
+    " ggx ",
+    "GGX",
+    "beckmann,ggx",
+]
+RGB_TEXTS = [
+    "1,1,1",
+    "0.5",
+    "0,0",
+    "-1,0,0",
+    "a",
+    "",
+    "inf",
+    "1,2,3,4",
+    " 0.2 , 0.3 , 0.4",
+    "1_0",
+    "0,0,nan",
+    "3,0.5,7",
+]
+LIGHTS = [
+    (t, p) for t in (0.0, 0.5, 30.0, 45.0, 89.9, 90.0) for p in (0.0, 90.0, -45.0, 270.0, 725.5)
+]
+PLANES = [(p, s) for p in (0.0, 30.0, 180.0, 359.0, -120.0) for s in (1.0, 0.5, 2.5, 7.0)]
+
+
+def jsonable(param: Param) -> dict:
+    return {
+        "name": param.name,
+        "kind": param.kind,
+        "default": list(param.default) if isinstance(param.default, tuple) else param.default,
+        "minimum": param.minimum,
+        "maximum": param.maximum,
+        "scale": param.scale,
+        "choices": list(param.choices),
+    }
+
+
+def python_value(param: Param, text: str):
+    try:
+        value = param.parse(text)
+    except ModelError:
+        return "error"
+    return list(value) if isinstance(value, tuple) else value
+
+
+def library_files() -> dict:
+    """Each library model's file as the page fetches it (its newlines untouched)."""
+    out = {}
+    for name in model_names():
+        with open(MODEL_DIR / f"{name}.glsl", encoding="utf-8", newline="") as handle:
+            out[name] = {"path": f"shaders/brdfs/{name}.glsl", "code": handle.read()}
+    return out
+
+
+@pytest.fixture(scope="module")
+def javascript():
+    if shutil.which("node") is None:
+        pytest.skip("node is not installed (apt nodejs; python3 -m lab test installs it)")
+    from lab.app.params import slider_position, slider_value
+
+    float_params = [p for p in PARAMS if p.kind == "float"] + [
+        Param("gloss", "float", 0.1, minimum=0.001, maximum=1.0, scale="log")
+    ]
+    positions = [0, 1, 250, 500, 999, 1000]
+    rng = np.random.default_rng(12)
+    samples = []
+    for p in float_params:
+        span = p.maximum - p.minimum
+        outside = (p.minimum / 2, p.maximum * 2) if p.scale == "log" else (-span, 2 * span)
+        samples += [(p, v) for v in (p.minimum, p.maximum, *outside)]
+        samples += [(p, float(v)) for v in rng.uniform(p.minimum, p.maximum, 20)]
+    cases = {
+        "direction": LIGHTS,
+        "plane": PLANES,
+        "values": [(jsonable(p), t) for p in PARAMS for t in TEXTS],
+        "rgb": RGB_TEXTS,
+        "slider_value": [(jsonable(p), k) for p in float_params for k in positions],
+        "slider_position": [(jsonable(p), v) for p, v in samples],
+        "library": library_files(),
+    }
+    python = {
+        "values": [python_value(p, t) for p in PARAMS for t in TEXTS],
+        "slider_value": [slider_value(p, k) for p in float_params for k in positions],
+        "slider_position": [slider_position(p, v) for p, v in samples],
+    }
+    with_cases = Path(__file__).resolve().parent / "output" / "mirror_cases.json"
+    with_cases.parent.mkdir(exist_ok=True)
+    with_cases.write_text(json.dumps(cases), encoding="utf-8")
+    run = subprocess.run(
+        ["node", str(CHECKER), str(with_cases)], capture_output=True, text=True, timeout=60
+    )
+    assert run.returncode == 0, run.stderr
+    return cases, python, json.loads(run.stdout)
+
+
+def test_direction_matches_python(javascript):
+    cases, _, js = javascript
+    for (theta, phi), got in zip(cases["direction"], js["direction"], strict=True):
+        want = direction(theta, phi)
+        assert np.allclose(got, want, rtol=0, atol=1e-15), (theta, phi, got, want)
+        assert (np.asarray(got) == 0).tolist() == (want == 0).tolist(), (theta, phi)
+
+
+def test_plane_of_incidence_matches_python(javascript):
+    cases, _, js = javascript
+    for (phi, step), got in zip(cases["plane"], js["plane"], strict=True):
+        theta_o, V = plane_of_incidence(30.0, phi, step)
+        assert got["thetaO"] == theta_o.tolist(), (phi, step)
+        assert np.allclose(got["V"], V, rtol=0, atol=1e-15), (phi, step)
+        # The mirror of the light lies at theta_o = theta_i on the positive side.
+        mirror = np.asarray(got["V"])[np.argmin(np.abs(theta_o - 30.0))]
+        light = direction(30.0, phi)
+        reflected = 2 * light[2] * np.array([0.0, 0.0, 1.0]) - light
+        if step == 1.0:
+            assert np.allclose(mirror, reflected, atol=1e-12), (phi, mirror, reflected)
+
+
+def test_value_parsing_matches_python(javascript):
+    cases, python, js = javascript
+    wrong = []
+    for (param, text), want, got in zip(
+        cases["values"], python["values"], js["values"], strict=True
+    ):
+        outcome = "error" if "error" in got else got["value"]
+        if outcome != want:
+            wrong.append(
+                f"{param['name']} ({param['kind']}) {text!r}: Python {want!r}, page {outcome!r}"
+            )
+    assert not wrong, "\n".join(wrong)
+    accepted = [w for w in python["values"] if w != "error"]
+    assert len(accepted) > 40 and len(accepted) < len(python["values"]) - 100  # both kinds tried
+
+
+def test_rgb_parsing_matches_python(javascript):
+    cases, _, js = javascript
+    for text, got in zip(cases["rgb"], js["rgb"], strict=True):
+        try:
+            want = list(parse_rgb(text, "--ambient"))
+        except UsageError:
+            want = None
+        assert got == want, (text, got, want)
+
+
+def test_sliders_match_the_apps(javascript):
+    _, python, js = javascript
+    assert np.allclose(js["slider_value"], python["slider_value"], rtol=1e-12, atol=0)
+    assert js["slider_position"] == python["slider_position"]
+
+
+def test_manifest_headers_are_what_the_page_would_parse(javascript):
+    """The page uses the manifest's headers instead of parsing the library files: they must
+    be what its own parser (header.js) makes of each file."""
+    cases, _, js = javascript
+    library = manifest()["library"]
+    assert set(library) == set(cases["library"]) == set(js["headers"])
+    for name, header in library.items():
+        assert "error" not in header, header
+        assert json.loads(json.dumps(header)) == js["headers"][name], name
+        assert header["params"] and header["title"], name
