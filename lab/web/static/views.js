@@ -7,7 +7,7 @@ import { formatG } from "./header.js";
 export const SHAPES = ["torus", "sphere", "rounded box", "bumpy sphere"];
 export const MODES = ["geometry only", "single BRDF", "diffuse texture only", "textures drive the BRDF"];
 // theta_i from 0 to 87.5 degrees, samples along each wedge, wedges around the mirror
-// direction: the desktop's full-quality albedo (lab/app/views.py AlbedoView.FULL).
+// direction: the desktop's full-quality albedo (lab/app/views/albedo.py AlbedoView.FULL).
 export const ALBEDO = { theta0: 0, step: 2.5, count: 36, samples: 192, wedges: 48 };
 // While a slider or the light moves: the desktop's fast albedo, a smaller slice and a
 // half-resolution object; the full views follow once the hand stops (lab.fast is off).
