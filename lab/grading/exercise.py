@@ -9,14 +9,15 @@ from __future__ import annotations
 import difflib
 import re
 import sys
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
 from lab.glsl import label_of
+from lab.grading import kinds
+from lab.grading.spec import Check, ExerciseError  # noqa: F401 - importable from here
 from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
 from lab.models import Model, ModelError, Param, load_model, parse_model
-from lab.render import Light
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -24,37 +25,10 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 MAX_BYTES = 256 * 1024
-CHECK_KINDS = ("probe", "sphere", "polar")
-
-
-class ExerciseError(ValueError):
-    """A broken exercise folder (instructor side): a usage error."""
 
 
 class SubmissionError(ValueError):
     """A submission that cannot be graded at all; the message is for the student."""
-
-
-@dataclass
-class Check:
-    """One graded check of an exercise, as `exercise.toml` declares it."""
-
-    name: str
-    kind: str  # probe | sphere | polar
-    points: float
-    params: dict = field(default_factory=dict)
-    view: str = "sphere"
-    lights: list[Light] = field(default_factory=list)
-    ambient: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    size: int = 128
-    theta_i: float = 45.0
-    phi_i: float = 0.0
-    pairs: int = 256
-    seed: int = 1
-    rtol: float = 2e-3
-    atol: float = 1e-4
-    threshold: float = 5.0  # per channel, in 1/255 after tone mapping
-    max_fraction: float = 0.001
 
 
 @dataclass
@@ -92,16 +66,6 @@ class Exercise:
         return sum(c.points for c in self.checks)
 
 
-def _lights(raw, where: str) -> list[Light]:
-    lights = []
-    for item in raw:
-        if not isinstance(item, list) or len(item) not in (2, 3):
-            raise ExerciseError(f"{where}: each light is [theta, phi] or [theta, phi, [r, g, b]]")
-        rgb = tuple(float(c) for c in item[2]) if len(item) == 3 else (1.0, 1.0, 1.0)
-        lights.append(Light(float(item[0]), float(item[1]), rgb))
-    return lights
-
-
 def load_exercise(folder: str | Path) -> Exercise:
     """Read `folder/exercise.toml`; raises ExerciseError with the file and what is wrong."""
     folder = Path(folder)
@@ -117,16 +81,13 @@ def load_exercise(folder: str | Path) -> Exercise:
         checks = []
         for raw in spec["checks"]:
             merged = {**defaults, **raw}
-            kind = merged.pop("kind")
-            if kind not in CHECK_KINDS:
-                raise ExerciseError(f"{spec_path}: check kind {kind!r} is not one of {CHECK_KINDS}")
-            lights = _lights(merged.pop("lights", [[45.0, 0.0]]), str(spec_path))
-            ambient = tuple(float(c) for c in merged.pop("ambient", (0.0, 0.0, 0.0)))
-            params = {
-                k: tuple(v) if isinstance(v, list) else v
-                for k, v in merged.pop("params", {}).items()
-            }
-            checks.append(Check(kind=kind, lights=lights, ambient=ambient, params=params, **merged))
+            name = merged.pop("kind")
+            kind = kinds.find(name) if isinstance(name, str) else None
+            if kind is None:
+                raise ExerciseError(
+                    f"{spec_path}: check kind {name!r} is not one of {kinds.names()}"
+                )
+            checks.append(kind.parse(merged, str(spec_path)))
         exercise = Exercise(
             folder=folder,
             title=spec["title"],

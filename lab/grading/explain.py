@@ -13,42 +13,17 @@ from pathlib import Path
 
 import numpy as np
 
-from lab.constants import LUMA
 from lab.glsl import ShaderCompileError
 from lab.grading import diagnosis, mistakes
-from lab.grading.checks import (
-    Grader,
-    expected_value,
-    polar_angles,
-    probe_angles,
-    render,
-    tonemap,
-)
+from lab.grading.checks import Grader, expected_value, render
 from lab.grading.exercise import Check, Exercise, ExerciseError, SubmissionError, build_model
+from lab.grading.kinds import kind_of
 from lab.models import Model, ModelError
-
-
-def angles_of(check: Check) -> np.ndarray | None:
-    if check.kind == "probe":
-        return probe_angles(check)
-    if check.kind == "polar":
-        return polar_angles(check)
-    return None
 
 
 def differs(check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
     """Would these values fail the check against the reference?"""
-    if check.kind == "sphere":
-        return _sphere_share(check, reference, values) > check.max_fraction
-    return not diagnosis.same(check, values, reference) or bool(
-        (~np.isfinite(values)).any() or (values < 0).any()
-    )
-
-
-def _sphere_share(check: Check, image8: np.ndarray, other8: np.ndarray) -> float:
-    covered = image8[..., 3] > 127
-    diff = np.abs(image8[..., :3].astype(int) - other8[..., :3].astype(int)).max(axis=-1)
-    return float((diff[covered] > check.threshold).mean()) if covered.any() else 0.0
+    return kind_of(check).differs(check, values, reference)
 
 
 # -- references: the variants' values, rendered from the solution ----------------------------
@@ -91,7 +66,7 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
     terms = mistakes.declared_terms(exercise)
     model = grader.solution_model(exercise)
     for check in exercise.checks:
-        if check.kind == "sphere":
+        if not kind_of(check).diagnose_terms:
             continue
         for name, overrides in terms.items():
             term_check = replace(check, params={**check.params, **overrides})
@@ -164,28 +139,19 @@ class Explainer:
     ) -> str:
         """'Likely: ...' for a failed check, or '' when the evidence names nothing."""
         hints = mistakes.read_hints(exercise)
-        got = raw if check.kind != "sphere" else _tonemapped(raw)
+        kind = kind_of(check)
+        got = kind.stored(raw, check)  # the form of the reference and the variants' values
         candidates = {
             k: v
             for k, v in self.candidates(exercise, check, live).items()
-            if k in hints and (not live or differs(check, v, expected))
+            if k in hints and (not live or kind.differs(check, v, expected))
         }
-        if check.kind == "sphere":
-            key = _nearest_image(check, got, candidates)
-            return diagnosis.sentence(hints[key]) if key else ""
-        wrong = ~diagnosis.within(check, got, expected, slack=1.0)
-        key = diagnosis.nearest(check, got, candidates, wrong)
+        key = kind.nearest(check, got, expected, candidates)
         if key:
             return diagnosis.sentence(hints[key])
-        angles = angles_of(check)
-        text = self._terms(exercise, check, model, angles, live)
-        text = text or diagnosis.shape(check, angles, expected, got)
-        text = text or self._swaps(check, model, angles, expected)
-        if not text and check.kind == "polar":
-            text = _lobe(check, angles, expected, got)
-        return diagnosis.sentence(text)
+        return diagnosis.sentence(kind.explain(self, exercise, check, model, expected, got, live))
 
-    def _terms(
+    def terms(
         self, exercise: Exercise, check: Check, model: Model, angles: np.ndarray, live: bool
     ) -> str:
         """Evaluate each declared term alone; name the wrong one and the shape of its error."""
@@ -208,13 +174,13 @@ class Explainer:
             else:
                 wrong.append(name)
                 detail = detail or diagnosis.shape(term_check, angles, want, mine)
-                if not detail and check.kind == "polar":
-                    detail = _lobe(term_check, angles, want, mine)
+                if not detail:
+                    detail = kind_of(check).lobe(term_check, angles, want, mine)
         if not wrong or not right:
             return ""
         return diagnosis.terms_sentence(wrong, right, detail if len(wrong) == 1 else "")
 
-    def _swaps(self, check: Check, model: Model, angles: np.ndarray, expected) -> str:
+    def swaps(self, check: Check, model: Model, angles: np.ndarray, expected) -> str:
         """L and V exchanged, or the tangent axes X and Y: render the swap and compare."""
         renderer = self.grader.renderer
         got = renderer.eval_angles(model, check.params, angles)
@@ -232,27 +198,3 @@ class Explainer:
         if diagnosis.same(check, axes, expected) and not diagnosis.same(check, axes, got):
             return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y"
         return ""
-
-
-def _lobe(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray) -> str:
-    """The polar curve's peak and width (luminance), against the solution's."""
-    theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
-    lum = np.array(LUMA)
-    return diagnosis.lobe(check, theta, expected @ lum, np.nan_to_num(got) @ lum, check.params)
-
-
-def _tonemapped(raw: np.ndarray) -> np.ndarray:
-    rgb = (np.clip(tonemap(raw[..., :3]), 0, 1) * 255.0 + 0.5).astype(np.uint8)
-    alpha = (np.clip(raw[..., 3:], 0, 1) * 255 + 0.5).astype(np.uint8)
-    return np.concatenate([rgb, alpha], axis=-1)
-
-
-def _nearest_image(check: Check, image8: np.ndarray, candidates: dict) -> str | None:
-    best, best_share = None, 1.0
-    for key, other in candidates.items():
-        if other.shape != image8.shape:
-            continue
-        share = _sphere_share(check, other, image8)
-        if share <= max(check.max_fraction, 0.002) and share < best_share:
-            best, best_share = key, share
-    return best

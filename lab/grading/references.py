@@ -13,13 +13,12 @@ import numpy as np
 from lab.grading.checks import VALUES_FILE, Grader, expected_value, render
 from lab.grading.exercise import find_exercises
 from lab.grading.explain import make_diagnosis
+from lab.grading.kinds import kind_of
 from lab.resources import data_dir
 
 
 def make_references(root: str | Path, grader: Grader | None = None) -> list[Path]:
     """Write references/<check>.png and references/values.npz for each exercise under root."""
-    from PIL import Image
-
     grader = grader or Grader()
     written = []
     for exercise in find_exercises(root):
@@ -29,12 +28,7 @@ def make_references(root: str | Path, grader: Grader | None = None) -> list[Path
         values = {}
         for check in exercise.checks:
             reference = expected_value(render(grader.renderer, model, check), check)
-            if check.kind == "sphere":
-                path = folder / f"{check.name}.png"
-                Image.fromarray(reference, "RGBA").save(path)
-                written.append(path)
-            else:
-                values[check.name] = reference
+            written += kind_of(check).save_reference(exercise, check, reference, values)
         stale = {p.name for p in folder.glob("*.png")} - {f"{c.name}.png" for c in exercise.checks}
         for name in stale:
             (folder / name).unlink()

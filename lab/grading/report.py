@@ -10,8 +10,8 @@ import os
 from pathlib import Path
 
 from lab.grading.checks import CheckResult
+from lab.grading.kinds import kind_of
 from lab.grading.runner import Task
-from lab.grading.visuals import difference_legend, polar_svg
 
 ROW_HEADER = ("theta_i", "phi_i", "theta_o", "phi_o", "expected", "got")
 
@@ -168,13 +168,6 @@ td, th { border: 1px solid #ccc; padding: 0.15em 0.5em; text-align: right;
 pre { background: #fee; padding: 0.5em; white-space: pre-wrap; }
 """
 
-CAPTIONS = {
-    "reference": "solution",
-    "student": "yours",
-    "difference": "yours − solution",
-    "failing pixels": "failing pixels (orange)",
-}
-
 
 def _setting_text(setting: dict) -> str:
     """Hidden mode: the seed and the values this check drew."""
@@ -209,18 +202,7 @@ def _check_html(result: CheckResult) -> str:
         parts.append(f'<p class="setting">{e(_setting_text(result.setting))}</p>')
     if result.errors:
         parts.append("<pre>" + e("\n".join(result.errors)) + "</pre>")
-    figures = []
-    for label, data in result.images.items():
-        if result.passed and label in ("difference", "failing pixels"):
-            continue
-        uri = "data:image/png;base64," + base64.b64encode(data).decode()
-        legend = difference_legend(result.threshold) if label == "difference" else ""
-        figures.append(
-            f'<figure><img src="{uri}" alt="{e(label)}"><figcaption>'
-            f"{e(CAPTIONS.get(label, label))}</figcaption>{legend}</figure>"
-        )
-    if result.curve:
-        figures.append(f"<figure>{polar_svg(result.curve, result.failing)}</figure>")
+    figures = kind_of(result).figures(result)  # the kind's own section: images, curves...
     if figures:
         parts.append('<div class="figures">' + "".join(figures) + "</div>")
     if result.rows:

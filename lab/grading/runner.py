@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from multiprocessing.connection import Connection, wait
 from pathlib import Path
 
+from lab.grading import kinds
 from lab.grading.checks import CheckResult, Grader
 from lab.grading.exercise import Exercise, load_exercise
 from lab.grading.explain import Explainer
@@ -117,7 +118,8 @@ def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
             return
         if job is None:
             return
-        key, folder, submission, root, seed, skip = job
+        key, folder, submission, root, seed, skip, packages = job
+        kinds.use_packages(packages)  # check kinds registered in the supervisor (plug-ins)
         if grader is None:
             conn.send(("crash", key, f"internal grader error: no OpenGL context ({detail})"))
             continue
@@ -165,7 +167,8 @@ class _Worker:
         skip = sorted(task.results)
         root = str(task.root) if task.root else ""
         exercise = str(task.exercise.folder)
-        self.conn.send((task.key, exercise, str(task.submission), root, task.seed, skip))
+        job = (task.key, exercise, str(task.submission), root, task.seed, skip, kinds.packages())
+        self.conn.send(job)
 
     def stop(self, kill: bool = False) -> None:
         if kill:

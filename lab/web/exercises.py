@@ -1,50 +1,39 @@
 """The exercises as the page's practice mode reads them (exercises.json).
 
 Everything the grader decides from is computed here by the grader's own code, so the page
-cannot drift from it: the direction pairs of each probe and polar check (probe_angles,
-polar_angles), the committed reference values and images, tolerances, points and the
-stub. The page renders the student's file in WebGL and compares as compare_values and
-compare_image do.
+cannot drift from it: each check's kind (lab.grading.kinds) gives its inputs (the direction
+pairs of probe and polar checks) and committed reference values or images; tolerances,
+points and the stub come from exercise.toml. The page renders the student's file in WebGL
+and compares as the probe, polar and sphere kinds do; a kind it cannot run is left out.
 """
 
 from __future__ import annotations
 
-import base64
 from dataclasses import asdict
 
 import numpy as np
 
-from lab.grading.checks import VALUES_FILE, polar_angles, probe_angles, read_png
 from lab.grading.exercise import Exercise, ExerciseError, find_exercises
+from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.resources import data_dir
 
-WHAT = {"probe": "direction pairs", "polar": "points of the polar curve"}
 
-
-def _floats(array: np.ndarray) -> str:
-    return base64.b64encode(np.ascontiguousarray(array, dtype="<f4").tobytes()).decode()
-
-
-def check_entry(exercise: Exercise, check, values) -> dict:
-    """One check: its settings, inputs and committed reference."""
+def check_entry(exercise: Exercise, check, values) -> dict | None:
+    """One check: its settings, inputs and committed reference (None: the page cannot
+    run this kind of check; its kind says so)."""
+    practice = kind_of(check).practice(exercise, check, values)
+    if practice is None:
+        return None
     entry = asdict(check)
     entry["lights"] = [[lt.theta, lt.phi, list(lt.rgb)] for lt in check.lights]
     entry["params"] = {k: list(v) if isinstance(v, tuple) else v for k, v in check.params.items()}
-    if check.kind == "sphere":
-        image = read_png(exercise.references / f"{check.name}.png")
-        entry["reference"] = base64.b64encode(np.ascontiguousarray(image).tobytes()).decode()
-        return entry
-    angles = probe_angles(check) if check.kind == "probe" else polar_angles(check)
-    entry["what"] = WHAT[check.kind]
-    entry["angles"] = _floats(angles)  # degrees: theta_i, phi_i, theta_o, phi_o
-    entry["expected"] = _floats(values[check.name][:, :3])
-    entry["count"] = len(angles)
-    return entry
+    return {**entry, **practice}
 
 
 def exercise_entry(exercise: Exercise) -> dict:
     with np.load(exercise.references / VALUES_FILE) as values:
-        checks = [check_entry(exercise, c, values) for c in exercise.checks]
+        entries = [check_entry(exercise, c, values) for c in exercise.checks]
+    checks = [entry for entry in entries if entry is not None]
     return {
         "name": exercise.name,
         "title": exercise.title,
@@ -54,7 +43,7 @@ def exercise_entry(exercise: Exercise) -> dict:
         "wrapper": exercise.wrapper,
         "replaces": exercise.replaces,
         "checks": checks,
-        "max_points": exercise.max_points,
+        "max_points": sum(entry["points"] for entry in checks),
     }
 
 

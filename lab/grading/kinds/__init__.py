@@ -1,0 +1,238 @@
+"""Check kinds: one class per kind of graded check, and the registry that lists them.
+
+A kind owns everything about its checks, in five parts:
+
+- inputs: the keys of its `[[checks]]` table in exercise.toml (`parse`, `fields`) and the
+  direction pairs it evaluates (`angles`);
+- render: what it renders from a model (`render`), stored as (`stored`), and where a
+  stopped loop was (`where`);
+- compare: the verdict against the reference, with tolerance and message (`compare`,
+  `differs`);
+- reference: how its reference is saved and read back (`save_reference`, `load_reference`);
+- report: its HTML figures (`figures`), its explanation of a failure (`nearest`,
+  `explain`) and its entry in the web page's practice mode (`practice`).
+
+Each module of this package (and of any package given to `add_package`) that defines
+`KIND = SomeKind()` is registered under `KIND.name`; exercise.toml's `kind = "..."` picks
+it. A new kind is one module: the grader, references, reports and explanations read it
+from here, with no other edit.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import importlib
+import pkgutil
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from lab.grading.result import CheckResult
+from lab.grading.spec import Check, ExerciseError, parse_lights
+from lab.grading.visuals import difference_legend, polar_svg
+
+if TYPE_CHECKING:
+    from lab.models import Model
+    from lab.render import Renderer
+
+VALUES_FILE = "values.npz"  # every kind's values-type references, one array per check
+
+
+class CheckKind:
+    """The base of every check kind; subclasses override what differs.
+
+    `exercise` arguments are lab.grading.exercise.Exercise (not imported: it imports this).
+    """
+
+    name = ""
+    order = 100  # position in listings (built-in kinds first)
+    fields: dict[str, Any] = {}  # the keys this kind adds to its table, with their defaults
+    diagnose_terms = False  # explanations evaluate the exercise's declared terms alone
+
+    # -- inputs ------------------------------------------------------------------------------
+    def parse(self, table: dict, where: str) -> Check:
+        """A Check from its table in exercise.toml (the exercise's defaults merged in, `kind`
+        taken out); raises ExerciseError, KeyError or TypeError saying what is wrong."""
+        table = dict(table)
+        lights = parse_lights(table.pop("lights", [[45.0, 0.0]]), where)
+        ambient = tuple(float(c) for c in table.pop("ambient", (0.0, 0.0, 0.0)))
+        params = {
+            k: tuple(v) if isinstance(v, list) else v for k, v in table.pop("params", {}).items()
+        }
+        options = {
+            key: self._option(table, key, default, where) for key, default in self.fields.items()
+        }
+        check = Check(
+            kind=self.name, lights=lights, ambient=ambient, params=params, options=options, **table
+        )
+        self.validate(check, where)
+        return check
+
+    @staticmethod
+    def _option(table: dict, key: str, default: Any, where: str) -> Any:
+        value = table.pop(key, default)
+        want = type(default)
+        ok = isinstance(value, want) and not (isinstance(value, bool) and want is not bool)
+        if want is float and isinstance(value, int) and not isinstance(value, bool):
+            value, ok = float(value), True
+        if not ok:
+            what = {bool: "true or false", int: "a whole number", float: "a number"}
+            raise ExerciseError(
+                f"{where}: check {table.get('name', '?')}: {key} = {value!r} should be "
+                f"{what.get(want, 'a ' + want.__name__)} (for example {key} = {default!r})"
+            )
+        return value
+
+    def validate(self, check: Check, where: str) -> None:
+        """Reject settings this kind cannot grade with (ExerciseError); nothing by default."""
+
+    def angles(self, check: Check) -> np.ndarray | None:
+        """(n, 4) rows theta_i, phi_i, theta_o, phi_o in degrees, or None (not pairs)."""
+        return None
+
+    # -- render --------------------------------------------------------------------------
+    def render(self, renderer: Renderer, model: Model, check: Check) -> np.ndarray:
+        """The raw float output of `model` for this check."""
+        raise NotImplementedError(f"check kind {self.name} renders nothing")
+
+    def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:
+        """What is stored as the reference (and compared by explanations): values as they are."""
+        return raw.astype(np.float32)
+
+    def where(self, check: Check, x: int, y: int) -> str:
+        """The input at pixel (x, y) of the render, in words (where a loop was stopped)."""
+        angles = self.angles(check)
+        if angles is None:
+            return f"pixel ({x}, {y})"
+        row = angles[min(y * min(len(angles), 1024) + x, len(angles) - 1)]
+        return "(θi, φi, θo, φo) = ({:.1f}°, {:.1f}°, {:.1f}°, {:.1f}°)".format(*row)
+
+    # -- compare -------------------------------------------------------------------------
+    def compare(self, check: Check, expected: np.ndarray, raw: np.ndarray) -> CheckResult:
+        """The verdict on the student's raw render against the stored reference."""
+        raise NotImplementedError(f"check kind {self.name} compares nothing")
+
+    def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
+        """Would these stored-form values fail the check against the reference?"""
+        return not np.allclose(values, reference, rtol=check.rtol, atol=check.atol)
+
+    # -- reference -----------------------------------------------------------------------
+    def save_reference(
+        self, exercise, check: Check, reference: np.ndarray, values: dict
+    ) -> list[Path]:
+        """Keep the reference: by default in `values` (written to references/values.npz);
+        returns the files written apart from that."""
+        values[check.name] = reference
+        return []
+
+    def load_reference(self, exercise, check: Check) -> np.ndarray:
+        """The committed reference (OSError or KeyError where there is none)."""
+        with np.load(exercise.references / VALUES_FILE) as data:
+            return data[check.name]
+
+    # -- report --------------------------------------------------------------------------
+    captions: dict[str, str] = {}  # report captions of the result's images, by their label
+
+    def figures(self, result: CheckResult) -> list[str]:
+        """HTML <figure> elements for the report's section of this check: the result's
+        images (a passed check leaves out its difference images) and polar curve."""
+        out = []
+        for label, data in result.images.items():
+            if result.passed and label in ("difference", "failing pixels"):
+                continue
+            uri = "data:image/png;base64," + base64.b64encode(data).decode()
+            legend = difference_legend(result.threshold) if label == "difference" else ""
+            out.append(
+                f'<figure><img src="{uri}" alt="{html.escape(label)}"><figcaption>'
+                f"{html.escape(self.captions.get(label, label))}</figcaption>{legend}</figure>"
+            )
+        if result.curve:
+            out.append(f"<figure>{polar_svg(result.curve, result.failing)}</figure>")
+        return out
+
+    def nearest(
+        self, check: Check, got: np.ndarray, expected: np.ndarray, candidates: dict
+    ) -> str | None:
+        """The known mistake (a key of `candidates`, stored-form values) the student's
+        values match, or None."""
+        return None
+
+    def explain(
+        self, explainer, exercise, check: Check, model: Model, expected, got, live: bool
+    ) -> str:
+        """What else the evidence says about a failure (a phrase, or ''), when no known
+        mistake matched; `explainer` is the worker's lab.grading.explain.Explainer."""
+        return ""
+
+    def practice(self, exercise, check: Check, values) -> dict | None:
+        """What the web page's practice mode needs beyond the check's settings, or None
+        when the page cannot run this kind (it is then left out there)."""
+        return None
+
+
+# -- the registry -----------------------------------------------------------------------------
+_PACKAGES = ["lab.grading.kinds"]
+_cache: dict[str, CheckKind] | None = None
+_UNKNOWN = CheckKind()  # reports of a kind this process does not know: generic sections
+
+
+def add_package(package: str) -> None:
+    """Also collect the kinds of `package` (a plug-in, or a test's own kinds)."""
+    global _cache
+    if package not in _PACKAGES:
+        _PACKAGES.append(package)
+    _cache = None
+
+
+def remove_package(package: str) -> None:
+    global _cache
+    if package in _PACKAGES[1:]:
+        _PACKAGES.remove(package)
+    _cache = None
+
+
+def packages() -> list[str]:
+    """The packages kinds are collected from (the grading workers collect the same)."""
+    return list(_PACKAGES)
+
+
+def use_packages(names: list[str]) -> None:
+    for name in names:
+        add_package(name)
+
+
+def all_kinds() -> dict[str, CheckKind]:
+    """Every registered kind by name, in order."""
+    global _cache
+    if _cache is None:
+        found: dict[str, CheckKind] = {}
+        for package in _PACKAGES:
+            root = importlib.import_module(package)
+            for info in pkgutil.iter_modules(root.__path__):
+                kind = getattr(importlib.import_module(f"{package}.{info.name}"), "KIND", None)
+                if isinstance(kind, CheckKind):
+                    if kind.name in found and found[kind.name] is not kind:
+                        raise ValueError(f"two check kinds are named {kind.name!r}")
+                    found[kind.name] = kind
+        _cache = dict(sorted(found.items(), key=lambda item: (item[1].order, item[0])))
+    return _cache
+
+
+def names() -> tuple[str, ...]:
+    return tuple(all_kinds())
+
+
+def find(name: str) -> CheckKind | None:
+    return all_kinds().get(name)
+
+
+def kind_of(check: Check | CheckResult) -> CheckKind:
+    """The kind of a check or result; a result of a kind unknown here gets generic parts."""
+    kind = find(check.kind)
+    if kind is None:
+        if isinstance(check, Check):
+            raise ExerciseError(f"check {check.name}: kind {check.kind!r} is not one of {names()}")
+        return _UNKNOWN
+    return kind
