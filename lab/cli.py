@@ -235,7 +235,8 @@ def cmd_bench(args) -> int:
     return 0
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(features: list[str] = FEATURE_CLIS) -> argparse.ArgumentParser:
+    """The `brdf-lab` parser with the sub-commands of `features` (their lab.*.cli modules)."""
     parser = argparse.ArgumentParser(
         prog="brdf-lab", description="A teaching lab for BRDFs: one GLSL shader per model."
     )
@@ -303,7 +304,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quick", action="store_true", help="fewer repetitions")
     p.set_defaults(func=cmd_bench)
 
-    for module_name in FEATURE_CLIS:
+    for module_name in features:
         if feature_present(module_name):
             importlib.import_module(module_name).register(sub)
     return parser
@@ -313,11 +314,15 @@ def main(argv: list[str] | None = None) -> int:
     from lab.gl import GLUnavailable
     from lab.glsl import ShaderCompileError
 
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    # Launching the desktop lab (also the default command) needs only its own sub-command:
+    # the other features' CLIs (grading, web, ...) are not imported before its first frame.
+    app_only = (not argv or argv[0] == "app") and feature_present("lab.app.cli")
+    parser = build_parser(["lab.app.cli"] if app_only else FEATURE_CLIS)
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         if feature_present("lab.app.cli"):
-            args = parser.parse_args(["app", *(argv or [])])
+            args = parser.parse_args(["app", *argv])
         else:
             args = parser.parse_args(["gallery"])
     try:

@@ -43,3 +43,27 @@ def test_first_frame_imports_no_heavy_module():
         f"loaded before the first frame: {run.stdout.strip()} (of {HEAVY_MODULES}); "
         "import them where they are used"
     )
+
+
+# `brdf-lab app` parses its command line without importing the other features' CLIs.
+PARSE_SCRIPT = """
+import contextlib, io, sys
+from lab.cli import main
+with contextlib.redirect_stdout(io.StringIO()) as shown, contextlib.suppress(SystemExit):
+    main(sys.argv[1:])
+others = ("lab.grading", "lab.web", "lab.ibl.cli", "lab.measured.cli", "urllib.request")
+print("--bench" in shown.getvalue(), ",".join(m for m in others if m in sys.modules) or "none")
+"""
+
+
+def test_app_command_line_loads_no_other_feature():
+    for argv in (["app", "--help"], ["--help"]):
+        run = subprocess.run(
+            [sys.executable, "-c", PARSE_SCRIPT, *argv], capture_output=True, text=True, timeout=60
+        )
+        assert run.returncode == 0, run.stderr[-2000:]
+        shown, loaded = run.stdout.split()
+        if argv[0] == "app":
+            assert (shown, loaded) == ("True", "none"), run.stdout  # the app's own help
+        else:  # the whole command's help lists every feature's sub-commands
+            assert "lab.grading" in loaded and "lab.web" in loaded, run.stdout

@@ -10,7 +10,6 @@ from PyQt6.QtCore import QFileSystemWatcher, QTimer
 from PyQt6.QtWidgets import QFileDialog
 
 from lab.glsl import ShaderCompileError, loop_warning
-from lab.measured.model import measured_model
 from lab.models import Model, ModelError
 from lab.presets import load_any
 
@@ -54,6 +53,8 @@ class ModelFiles:
 
     def open_measured(self, path: str | Path):
         """Add a MERL .binary table as the `measured` model; errors go to the error panel."""
+        from lab.measured.model import measured_model  # the first frame does without it
+
         path = str(Path(path).resolve())
         try:
             model = measured_model(path)

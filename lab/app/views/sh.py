@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pyqtgraph as pg
@@ -22,9 +23,11 @@ from lab.app.state import ModelState, Settings
 from lab.app.views.base import LUMA, View, look_key, pen, state_key
 from lab.app.widgets import LiveText
 from lab.glsl import ShaderCompileError
-from lab.measured import sh
 from lab.models import ModelError
 from lab.render import direction, plane_of_incidence
+
+if TYPE_CHECKING:  # the SH maths is imported when first used: the first frame draws
+    from lab.measured import sh  # only the plane of incidence
 
 MAX_ORDER = 16
 SERIES_COLOR = (255, 210, 0)
@@ -34,6 +37,8 @@ GRID = (48, 96)  # Gauss-Legendre nodes in cos(theta) x uniform phi: exact enoug
 @lru_cache(maxsize=2)
 def projector(n_theta: int, n_phi: int) -> sh.Projector:
     """Harmonics on the quadrature grid (the same for every light and model)."""
+    from lab.measured import sh
+
     return sh.Projector(MAX_ORDER, sh.hemisphere_grid(n_theta, n_phi))
 
 
@@ -43,6 +48,8 @@ def plane_basis(phi_i: float) -> tuple[np.ndarray, np.ndarray]:
 
     The directions depend on phi_i alone, so dragging theta_i reuses them.
     """
+    from lab.measured import sh
+
     theta_o, V = plane_of_incidence(0.0, phi_i, step=1.0)
     theta = np.arccos(np.clip(V[:, 2], -1.0, 1.0))
     return theta_o, sh.real_sh(MAX_ORDER, theta, np.arctan2(V[:, 1], V[:, 0]))
@@ -84,7 +91,9 @@ class SHData:
 
     def reconstruction(self, order: int) -> np.ndarray:
         """The order-`order` series in the plane of incidence."""
-        n = sh.coefficient_count(order)
+        from lab.measured.sh import coefficient_count
+
+        n = coefficient_count(order)
         return self.plane_basis[:, :n] @ self.coefficients[:n]
 
 
@@ -237,6 +246,8 @@ class SHView(View):
         data = self.data
         if data is None:
             return False
+        from lab.measured.sh import coefficient_count  # loaded by sh_data by now
+
         order = self.order
         shown = (id(data), order, state.color)
         if shown == self.shown:
@@ -261,7 +272,7 @@ class SHView(View):
         self.error_curve.setData(np.arange(MAX_ORDER + 1), errors, pen=pen(state.color))
         self.order_mark.setValue(order)
         self.info.setText(
-            f"L = {order}: {sh.coefficient_count(order)} coefficients, "
+            f"L = {order}: {coefficient_count(order)} coefficients, "
             f"error {100 * data.errors[order]:.2g} %"
         )
         return False
