@@ -15,10 +15,12 @@ pytest.importorskip("pytestqt")
 if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
     pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
 
-from PyQt6.QtWidgets import QAbstractButton, QComboBox, QLabel, QWidget  # noqa: E402
+from PyQt6.QtCore import Qt  # noqa: E402
+from PyQt6.QtWidgets import QAbstractButton, QComboBox, QLabel, QTabBar, QWidget  # noqa: E402
 from qtapp import settle  # noqa: E402
 
 from lab.app.state import shipped_presets  # noqa: E402
+from lab.app.widgets import LiveText  # noqa: E402
 from lab.models import load_model  # noqa: E402
 
 
@@ -36,6 +38,13 @@ def cut_texts(window) -> list[str]:
                 room -= 6  # the button's own margins
         elif isinstance(widget, QComboBox):
             text, room = widget.currentText(), widget.contentsRect().width() - 24
+        elif isinstance(widget, LiveText):  # a short form or nothing is fine, "…" is not
+            if widget.painted() not in (widget.text(), widget.short, ""):
+                cut.append(f"LiveText {widget.text()!r} shows {widget.painted()!r}")
+            continue
+        elif isinstance(widget, QTabBar):  # the docks' tabs: elided, or scrolled out of view
+            cut += cut_tabs(widget)
+            continue
         else:
             continue
         for line in text.splitlines():
@@ -47,6 +56,28 @@ def cut_texts(window) -> list[str]:
             need = dock.fontMetrics().horizontalAdvance(dock.windowTitle())
             if need > dock.width() - 50:  # the float and close buttons
                 cut.append(f"dock title {dock.windowTitle()!r}")
+    return cut
+
+
+def cut_tabs(bar: QTabBar) -> list[str]:
+    """Tabs whose title is elided or that lie (partly) outside the bar (scroll buttons)."""
+    cut = []
+    metrics = bar.fontMetrics()
+    for i in range(bar.count()):
+        if not bar.isTabVisible(i):
+            continue
+        rect, text = bar.tabRect(i), bar.tabText(i).replace("&", "")
+        need = metrics.horizontalAdvance(text)
+        room = (
+            rect.width()
+            - 2 * bar.style().pixelMetric(bar.style().PixelMetric.PM_TabBarTabHSpace) // 2
+        )
+        outside = rect.left() < 0 or rect.right() > bar.width()
+        elided = bar.elideMode() != Qt.TextElideMode.ElideNone and need > room + 1
+        if outside or elided:
+            cut.append(
+                f"tab {text!r}: {need} px in {room} px{', scrolled away' if outside else ''}"
+            )
     return cut
 
 
@@ -66,7 +97,8 @@ def test_presenter_fits_the_projector(qtbot, window, output_dir, size):
             name = preset.stem[:2] if preset else "all"
             window.grab().save(str(output_dir / f"presenter_{size[0]}x{size[1]}_{name}.png"))
             assert (window.width(), window.height()) == size, f"{name}: needs {window.size()}"
-            assert cut_texts(window) == [], name
+            cut = cut_texts(window)
+            assert cut == [], f"{name}: {cut}"
             # The views get the room: the controls column stays a narrow one.
             assert window.controls_dock.width() <= 0.34 * size[0], name
     finally:

@@ -192,3 +192,121 @@ def test_slide_keys_work_after_using_a_demo(deck, deck_page):
     deck_page.keyboard.press("PageUp")  # the focus stays in the (now hidden) frame
     deck_page.wait_for_function(f"Reveal.getIndices().h === {first}", timeout=5_000)
     assert deck_page.errors == []
+
+
+# Records what every 2D canvas draws as text (its font and the canvas), so a test can size it.
+CANVAS_TEXT_HOOK = """(() => {
+  const P = CanvasRenderingContext2D.prototype;
+  const fill = P.fillText, clear = P.clearRect;
+  P.clearRect = function (x, y, w, h) {
+    const all = x <= 0 && y <= 0 && w >= this.canvas.width && h >= this.canvas.height;
+    if (all) this.canvas.drawnText = [];
+    return clear.apply(this, arguments);
+  };
+  P.fillText = function (text) {
+    (this.canvas.drawnText ||= []).push({ text: String(text), px: parseFloat(this.font) });
+    return fill.apply(this, arguments);
+  };
+})();"""
+
+# In a demo's frame: every visible piece of text with its size in CSS px of the frame.
+FRAME_TEXT = """() => {
+  const out = [];
+  const visible = (e) => e.getClientRects().length && getComputedStyle(e).visibility !== "hidden";
+  const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+    const e = n.parentElement;
+    if (!n.textContent.trim() || !e || !visible(e) || e.closest("option, script")) continue;
+    const px = parseFloat(getComputedStyle(e).fontSize);
+    out.push({ text: n.textContent.trim().slice(0, 40), px });
+  }
+  for (const e of document.querySelectorAll("input[type=text], select")) {
+    if (visible(e)) out.push({ text: e.value, px: parseFloat(getComputedStyle(e).fontSize) });
+  }
+  for (const c of document.querySelectorAll("canvas")) {
+    if (!visible(c) || !c.drawnText) continue;
+    const k = c.clientWidth / c.width;
+    for (const t of c.drawnText) out.push({ text: t.text, px: t.px * k, canvas: true });
+  }
+  return out;
+}"""
+
+MIN_TEXT_PX = 24  # on a 1280x720 screen: readable from the back of a hall
+
+
+@pytest.fixture(scope="module")
+def deck_720(deck, deck_page):
+    from lab.web.site import serving
+
+    with serving(deck) as url:
+        page = deck_page.lab_browser.new_page(viewport={"width": 1280, "height": 720})
+        page.add_init_script(CANVAS_TEXT_HOOK)
+        page.goto(f"{url}index.html")
+        page.wait_for_function("window.Reveal && Reveal.isReady()")
+        yield page
+        page.close()
+
+
+def show_demo(page, slide: int):
+    page.evaluate(f"Reveal.slide({slide})")
+    iframe = page.wait_for_selector("section.present iframe.demo")
+    frame = iframe.content_frame()
+    frame.wait_for_function(
+        "window.brdfLab && brdfLab.state.firstRenderMs !== null", timeout=30_000
+    )
+    frame.evaluate("brdfLab.renderNow()")
+    # The deck scales the slide (and the frame in it) to the window.
+    scale = page.evaluate(
+        "(() => { const f = document.querySelector('section.present iframe.demo');"
+        " return f.getBoundingClientRect().width / f.offsetWidth; })()"
+    )
+    return frame, scale
+
+
+def test_demo_text_readable_at_720p(deck, deck_720, output_dir):
+    """Every word a live demo shows, HTML and canvas alike, is at least 24 px high on a
+    1280x720 screen (the deck scaled to it, as a projector shows it)."""
+    from lab.web.slides import deck_info
+
+    small = []
+    for demo in deck_info(deck)["demos"]:
+        frame, scale = show_demo(deck_720, demo["slide"])
+        texts = frame.evaluate(FRAME_TEXT)
+        assert any(t["text"] for t in texts) and scale > 0.5
+        assert sum(1 for t in texts if t.get("canvas")) >= 3  # the plots' text is counted
+        for t in texts:
+            if t["px"] * scale < MIN_TEXT_PX - 0.05:
+                small.append(f"slide {demo['slide']}: {t['text']!r} {t['px'] * scale:.1f} px")
+        deck_720.screenshot(path=output_dir / f"slide_{demo['slide']:02d}_demo_720p.png")
+    assert not small, "text under 24 px at 720p:\n" + "\n".join(small)
+
+
+def test_off_specular_demo_shows_the_peak(deck, deck_720, renderer):
+    """The off-specular demo marks the peaks the renderer computes (past the mirror direction
+    with Schlick's F, at it with F = 1) on lobes wide enough to see."""
+    from test_claims import peak_angle
+
+    from lab.web.slides import deck_info
+
+    demo = next(d for d in deck_info(deck)["demos"] if "plot=theta" in d["hash"])
+    frame, scale = show_demo(deck_720, demo["slide"])
+    for i, fresnel in enumerate(("schlick", "none")):
+        values = {"kd": (0.0, 0.0, 0.0), "m": 0.35, "fresnel": fresnel}
+        assert frame.evaluate(f"brdfLab.panel({i}).values.fresnel") == fresnel
+        expected = peak_angle(renderer, "cook_torrance", values, 60.0)
+        shown = frame.evaluate(f"brdfLab.panel({i}).polarGeometry")
+        assert shown["peakDeg"] == pytest.approx(expected, abs=1), fresnel
+        assert shown["mirrorDeg"] == 60
+        assert expected >= 70 if fresnel == "schlick" else expected == 60
+        # Not a sliver: the part of the lobe above half its peak spans at least 40 px on screen.
+        lo, hi = shown["range"]
+        above = frame.evaluate(
+            f"(() => {{ const p = brdfLab.panel({i}); const l = p.lobe; const f = [];"
+            " for (let k = 0; k < 181; k++)"
+            " f.push(l[4*k] * 0.2126 + l[4*k+1] * 0.7152 + l[4*k+2] * 0.0722);"
+            " const c = f.map((v, k) => v * Math.cos((k - 90) * Math.PI / 180));"
+            " const top = Math.max(...c.filter((_, k) => Math.abs(k - 90) <= 87));"
+            " return c.filter((v, k) => Math.abs(k - 90) <= 87 && v >= top / 2).length; })()"
+        )
+        width = frame.evaluate(f"brdfLab.panel({i}).polar.clientWidth")
+        assert above * width / (hi - lo) * scale >= 40

@@ -23,7 +23,9 @@ class LiveText(QWidget):
     """One line of text that changes often (values, status): a new text only repaints it.
 
     A QLabel asks its parents to lay themselves out again on every new text, which
-    costs more than a whole frame's drawing; this keeps a fixed height and elides.
+    costs more than a whole frame's drawing; this keeps a fixed height. Where the text does
+    not fit it shows `short`, or nothing if it is `optional` (a hint its tooltip repeats),
+    and elides only as a last resort.
     """
 
     def __init__(
@@ -31,9 +33,12 @@ class LiveText(QWidget):
         text: str = "",
         width: int | None = None,
         align: Qt.AlignmentFlag = Qt.AlignmentFlag.AlignLeft,
+        short: str | None = None,
+        optional: bool = False,
     ):
         super().__init__()
         self._text, self.color, self.align, self.width_ = text, None, align, width
+        self.short, self.optional = short, optional
         self._fit()
 
     def _fit(self) -> None:
@@ -48,6 +53,16 @@ class LiveText(QWidget):
 
     def text(self) -> str:
         return self._text
+
+    def painted(self) -> str:
+        """The text as it shows in the widget's width now."""
+        metrics, room = self.fontMetrics(), self.width() - 4
+        for text in (self._text, self.short):
+            if text is not None and metrics.horizontalAdvance(text) <= room:
+                return text
+        if self.optional:
+            return ""
+        return metrics.elidedText(self._text, Qt.TextElideMode.ElideRight, room)
 
     def setText(self, text: str, color: str | None = None) -> None:  # noqa: N802 (Qt style)
         if text != self._text or color != self.color:
@@ -67,8 +82,7 @@ class LiveText(QWidget):
         if self.color:
             painter.setPen(QColor(self.color))
         rect = self.rect().adjusted(2, 0, -2, 0)
-        text = self.fontMetrics().elidedText(self._text, Qt.TextElideMode.ElideRight, rect.width())
-        painter.drawText(rect, self.align | Qt.AlignmentFlag.AlignVCenter, text)
+        painter.drawText(rect, self.align | Qt.AlignmentFlag.AlignVCenter, self.painted())
         painter.end()
 
 

@@ -48,6 +48,8 @@ SHORT_TITLES = {
     "albedo": "Albedo",
     "object": "Object",
     "sh": "SH",
+    "lobe3d": "Lobe",
+    "ibl": "IBL",
 }
 
 
@@ -109,6 +111,10 @@ class MainWindow(ModelFiles, QMainWindow):
                 continue
             font = QFont(dock.font())
             room = dock.width() - 50  # the float and close buttons
+            # Docks tabbed together share the width of their tab bar.
+            tabs = [d for d in self.tabifiedDockWidgets(dock) if not d.isHidden()]
+            if tabs and not dock.isHidden():
+                room = dock.width() // (len(tabs) + 1) - 30  # a tab's margins
             title = spec.title
             if QFontMetrics(font).horizontalAdvance(title) > room:
                 title = SHORT_TITLES.get(spec.name, title)
@@ -201,6 +207,7 @@ class MainWindow(ModelFiles, QMainWindow):
         # Presenter mode: the views get the room, the (larger) controls a narrow column.
         left = min(max(300, int(0.27 * width)), self.controls_cap())
         self.controls_dock.setMaximumWidth(self.controls_cap())
+        QTimer.singleShot(0, self.fit_titles)  # tabs share their bar's width
         # Qt moves a separator only when the docks on both sides of it are named.
         self.resizeDocks(
             [self.controls_dock, self.docks["sphere"]],

@@ -24,7 +24,7 @@ class AlbedoView(View):
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
-        self.note = LiveText(self.NOTE)
+        self.note = LiveText(self.NOTE, short="albedo = ∫ f_r cos θo dω", optional=True)
         self.tools.addWidget(self.note, 1)
         self.plot = pg.PlotWidget()
         opaque(self.plot.viewport())

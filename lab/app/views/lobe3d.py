@@ -86,7 +86,7 @@ class LobeView(View):
         self.wire.setToolTip("grid lines only: overlapping lobes show through each other")
         self.wire.toggled.connect(lambda _: self.window().request())
         self.tools.addWidget(self.wire)
-        hint = LiveText("drag: rotate, wheel: zoom")
+        hint = LiveText("drag: rotate, wheel: zoom", short="drag, wheel", optional=True)
         self.tools.addWidget(hint, 1)
         self.canvas = LobeCanvas(self)
         for widget in (hint, self.canvas):

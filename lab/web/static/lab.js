@@ -7,10 +7,12 @@ import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { ShaderEditor } from "./edit.js";
 import { ExerciseMode } from "./exercise.js";
+import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
+const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
 // Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
@@ -51,6 +53,10 @@ const lab = {
   size: 384,
   cosWeighted: false,
   embed: false,
+  // Slides: only these controls (null: all), the lobe against θo, each plot on its own scale.
+  show: null,
+  plot: "polar",
+  scaleEach: false,
   notes: [],
   views: [], // shown besides the sphere and the polar plot: keys of VIEWS, in that order
   ...SETTINGS,
@@ -228,7 +234,10 @@ class Panel {
     this.editButton = el("button", { type: "button", class: "edit", title: "edit this model's GLSL file in the page",
       onclick: () => openEditor(this) }, "edit");
     this.canvas = el("canvas", { class: "sphere", width: lab.size, height: lab.size });
-    this.polar = el("canvas", { class: "polar", width: lab.size, height: Math.round(lab.size / 2 + (lab.embed ? 34 : 28)) });
+    // Embedded, the plot is wider than the sphere: its labels are large (deck.js).
+    const plotWidth = Math.round(lab.size * (lab.embed ? EMBED_PLOT : 1));
+    this.polar = el("canvas", { class: "polar", width: plotWidth,
+      height: Math.round(lab.embed ? plotWidth * 0.62 : lab.size / 2 + 28) });
     this.displaySize(lab.size);
     this.errorBox = el("pre", { class: "errors", hidden: "" });
     this.loopBox = el("p", { class: "errors loop-warning", hidden: "" });
@@ -274,7 +283,8 @@ class Panel {
     if (lab.embed) {
       // Embedded: exact heights, so that fitting the frame converges (the grid of a slide).
       this.canvas.style.height = `${px}px`;
-      this.polar.style.height = `${(px * this.polar.height) / this.polar.width}px`;
+      this.polar.style.width = `${px * EMBED_PLOT}px`;
+      this.polar.style.height = `${(px * EMBED_PLOT * this.polar.height) / this.polar.width}px`;
     }
     for (const view of Object.values(this.extra)) view.canvas.style.width = `${px}px`;
   }
@@ -323,6 +333,7 @@ class Panel {
     this.formula.append(el("strong", {}, this.model.title || name),
       ...this.model.formula.map((f) => el("code", {}, f)));
     for (const p of this.model.params) this.controls.append(this.control(p));
+    if (lab.embed) showOnly(lab.show);
   }
 
   control(p) {
@@ -623,7 +634,14 @@ function drawPolars() {
   const curves = lab.panels.filter((p) => p.lobe && p.model).map((p) => [p, lobeLuminance(p)]);
   const scale = Math.max(0, ...curves.map(([, c]) => (c.spike !== null ? Math.max(c.peak, 1) : c.peak)));
   const theta = lab.lights[0].theta;
-  for (const [panel, curve] of curves) panel.polarGeometry = drawPolar(panel.polar, [curve], theta, scale);
+  const own = (curve) => (curve.spike !== null ? Math.max(curve.peak, 1) : curve.peak);
+  for (const [panel, curve] of curves) {
+    const each = lab.scaleEach ? own(curve) : scale;
+    panel.polarGeometry = lab.plot === "theta"
+      ? drawCurve(panel.polar, curve, theta, each, { fontPx: pageFontPx(), grazingDeg: C.GRAZING_DEG,
+        what: lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ", inPlane: lab.phiO === 0 })
+      : drawPolar(panel.polar, [curve], theta, each);
+  }
   const overlay = $("#overlay");
   overlay.hidden = curves.length < 2;
   if (!overlay.hidden) lab.overlayGeometry = drawPolar($("#overlay canvas"), curves.map(([, c]) => c), theta, scale, true);
@@ -643,10 +661,10 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   const h = canvas.height;
   // Text the same size on screen whatever the canvas is scaled to (embedded demos shrink it).
   const shown = canvas.clientWidth || w;
-  const font = Math.min(Math.round(((lab.embed ? 16 : 12) * w) / shown), Math.round(w / 14));
+  const font = lab.embed ? Math.round((pageFontPx() * w) / shown) : Math.min(Math.round((12 * w) / shown), Math.round(w / 14));
   const cx = w / 2;
   const cy = h - Math.round(font * 0.6);
-  const radius = Math.max(Math.min(w / 2 - 2.2 * font, h - 4.1 * font), 8);
+  const radius = Math.max(Math.min(w / 2 - 2.2 * font, h - (lab.embed ? 4.4 : 4.1) * font), 8);
   ctx.clearRect(0, 0, w, h);
   ctx.font = `${font}px system-ui, sans-serif`;
   ctx.lineWidth = 1;
@@ -668,7 +686,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
     return [cx - r * Math.sin(a), cy - r * Math.cos(a)];
   };
   ctx.fillStyle = "#999";
-  ctx.font = `${Math.round(font * 0.85)}px system-ui, sans-serif`;
+  ctx.font = `${Math.round(font * (lab.embed ? 1 : 0.85))}px system-ui, sans-serif`;
   let free = cx; // ring values left to right, each only where the last one has ended
   for (const [r, value] of [...rings].sort((a, b) => a[0] - b[0])) {
     ctx.strokeStyle = r === 1 ? "#8888" : "#5556";
@@ -732,7 +750,10 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   }
   const clippedMax = over.length ? Math.max(...over.map(([c, i]) => c.lum[i])) : 0;
   const clipped = over.length ? `; ▼ clipped: up to ${formatG(round(clippedMax))} sr⁻¹` : "";
-  ctx.fillText(scale > 0 ? `outer circle: ${circle}${log}${clipped}` : "fᵣ = 0 in this plane", 2, 2.2 * font);
+  // The longest wording that fits (large text in a slide leaves little room).
+  const fit = (...texts) => texts.find((t) => ctx.measureText(t).width <= w - 4) || texts[texts.length - 1];
+  ctx.fillText(scale > 0 ? fit(`outer circle: ${circle}${log}${clipped}`, `outer circle: ${circle}${log}`,
+    `outer: ${circle}`) : "fᵣ = 0 in this plane", 2, 2.2 * font);
   let spikeLength = 0;
   for (const curve of curves) {
     if (curve.peak > 0 || curve.lum.some((f) => f > 0)) {
@@ -965,6 +986,7 @@ function showAmbient() {
 function fitEmbed() {
   if (!lab.embed) return;
   document.body.classList.toggle("single", lab.panels.length === 1);
+  showOnly(lab.show);
   const root = document.documentElement;
   const apply = (px) => lab.panels.forEach((panel) => panel.displaySize(px));
   let px = lab.size;
@@ -1017,6 +1039,9 @@ function readHash() {
   lab.active = 0;
   Object.assign(lab, SETTINGS);
   lab.views = [];
+  lab.show = null;
+  lab.plot = "polar";
+  lab.scaleEach = false;
   const params = new URLSearchParams(location.hash.slice(1));
   const panels = [];
   const lights = [];
@@ -1040,6 +1065,14 @@ function readHash() {
       if (Math.round(Number(value)) !== lab.size) lab.notes.push("size=: reload the page to change the render size");
     } else if (key === "size") lab.size = Math.min(Math.max(Math.round(Number(value)) || 384, 32), 1024);
     else if (key === "embed") lab.embed = value !== "0";
+    else if (key === "show") lab.show = value.split(",").filter(Boolean);
+    else if (key === "scale") {
+      if (value === "each" || value === "shared") lab.scaleEach = value === "each";
+      else lab.notes.push(`scale=${value}: write scale=each (each plot on its own scale) or scale=shared`);
+    } else if (key === "plot") {
+      if (value === "theta" || value === "polar") lab.plot = value;
+      else lab.notes.push(`plot=${value}: write plot=polar or plot=theta (the lobe against θo)`);
+    }
     else if (key === "cos") lab.cosWeighted = value !== "0";
     else if (key === "log") lab.polarLog = value !== "0";
     else if (key === "views") {
@@ -1110,6 +1143,9 @@ function writeHash() {
   for (const [key, [field]] of Object.entries(HASH_SETTINGS)) {
     if (lab[field] !== SETTINGS[field]) parts.push(`${key}=${formatG(round(lab[field]))}`);
   }
+  if (lab.show) parts.push(`show=${lab.show.join(",")}`);
+  if (lab.plot !== "polar") parts.push(`plot=${lab.plot}`);
+  if (lab.scaleEach) parts.push("scale=each");
   if (lab.embed) parts.push("embed=1");
   history.replaceState(null, "", `#${parts.join("&")}`);
 }
