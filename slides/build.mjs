@@ -1,5 +1,6 @@
 // Builds the lecture deck: lecture.md -> index.html (reveal.js), equations typeset by KaTeX
-// at build time, `::demo` lines -> iframes of the web lab, `::figures` lines -> figure rows.
+// at build time, `::demo` lines -> iframes of the web lab, `::figures [HEIGHT] A.png "caption" | ...`
+// lines -> figure rows.
 // Usage: node slides/build.mjs OUTDIR   (brdf-lab slides build runs it after npm ci and
 // after rendering the figures into OUTDIR/figures and exporting the lab into OUTDIR/lab).
 import { cpSync, existsSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
@@ -51,21 +52,22 @@ function renderSlide(slide, outdir, used) {
   slide.lines.forEach((raw, offset) => {
     const line = slide.line + offset;
     const demo = /^::demo\s+(\S+)(?:\s+(\d+))?\s*$/.exec(raw);
-    const figures = /^::figures\s+(.*)$/.exec(raw);
+    const figures = /^::figures\s+(?:(\d+)\s+)?(.*)$/.exec(raw); // optional: max height (px)
     if (demo) {
       const height = demo[2] || "560";
       used.demos.push({ slide: used.count, hash: demo[1] });
       body.push(keep(`<iframe class="demo" data-src="lab/index.html#${escapeHtml(demo[1])}&amp;embed=1"` +
         ` style="height:${height}px" title="live demo"></iframe>`));
     } else if (figures) {
-      const cells = figures[1].split("|").map((cell) => {
+      const style = figures[1] ? ` style="max-height:${figures[1]}px"` : "";
+      const cells = figures[2].split("|").map((cell) => {
         const m = /^\s*(\S+\.png)\s*(?:"([^"]*)")?\s*$/.exec(cell);
         if (!m) fail(line, `write '::figures NAME.png "caption" | ...', not ${JSON.stringify(cell)}`);
         if (!existsSync(join(outdir, "figures", m[1]))) {
           fail(line, `figure ${m[1]} was not rendered (lab.figures.lecture_figures makes it)`);
         }
         used.figures.push(m[1]);
-        return `<figure><img src="figures/${m[1]}" alt="${escapeHtml(m[2] || m[1])}">` +
+        return `<figure><img src="figures/${m[1]}" alt="${escapeHtml(m[2] || m[1])}"${style}>` +
           `<figcaption>${escapeHtml(m[2] || "")}</figcaption></figure>`;
       });
       body.push(keep(`<div class="figures">${cells.join("")}</div>`));

@@ -16,7 +16,14 @@ if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
     pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
 
 from PyQt6.QtCore import Qt  # noqa: E402
-from PyQt6.QtWidgets import QAbstractButton, QComboBox, QLabel, QTabBar, QWidget  # noqa: E402
+from PyQt6.QtWidgets import (  # noqa: E402
+    QAbstractButton,
+    QComboBox,
+    QLabel,
+    QLineEdit,
+    QTabBar,
+    QWidget,
+)
 from qtapp import settle  # noqa: E402
 
 from lab.app.state import shipped_presets  # noqa: E402
@@ -38,6 +45,8 @@ def cut_texts(window) -> list[str]:
                 room -= 6  # the button's own margins
         elif isinstance(widget, QComboBox):
             text, room = widget.currentText(), widget.contentsRect().width() - 24
+        elif isinstance(widget, QLineEdit):  # a value box that scrolls its text
+            text, room = widget.text(), widget.contentsRect().width() - 8
         elif isinstance(widget, LiveText):  # a short form or nothing is fine, "…" is not
             if widget.painted() not in (widget.text(), widget.short, ""):
                 cut.append(f"LiveText {widget.text()!r} shows {widget.painted()!r}")
@@ -51,6 +60,9 @@ def cut_texts(window) -> list[str]:
             need = widget.fontMetrics().horizontalAdvance(line)
             if line and need > room + 1:
                 cut.append(f"{type(widget).__name__} {line!r}: {need} px > {room} px")
+    for view in window.findChildren(QWidget):  # captions a view paints itself
+        if view.isVisible() and getattr(view, "elided", None):
+            cut += [f"{type(view).__name__} caption {c!r} elided" for c in view.elided]
     for dock in window.docks.values():
         if dock.isVisible() and not dock.visibleRegion().isEmpty():
             need = dock.fontMetrics().horizontalAdvance(dock.windowTitle())

@@ -310,3 +310,31 @@ def test_off_specular_demo_shows_the_peak(deck, deck_720, renderer):
         )
         width = frame.evaluate(f"brdfLab.panel({i}).polar.clientWidth")
         assert above * width / (hi - lo) * scale >= 40
+
+
+# How far (screen px) the present slide's content reaches past the slide's box; KaTeX's
+# own stretchy SVG paths are left out (they are clipped by design).
+OVERFLOW = """() => { const box = document.querySelector('.reveal .slides').getBoundingClientRect();
+  let worst = 0, what = '';
+  for (const e of document.querySelectorAll('section.present *')) {
+    if (e.closest('.katex svg, aside.notes')) continue;
+    const r = e.getBoundingClientRect();
+    if (!r.width || !r.height) continue;
+    const over = Math.max(r.bottom - box.bottom, r.right - box.right, box.left - r.left);
+    if (over > worst) { worst = over; what = e.tagName + ' ' + (e.textContent || '').slice(0, 50); }
+  }
+  return [worst, what]; }"""
+
+
+def test_every_slide_fits_720p(deck, deck_720):
+    """At 1280x720 no text, figure or demo runs off its slide (nothing clipped)."""
+    from lab.web.slides import deck_info
+
+    over = []
+    for index in range(deck_info(deck)["count"]):
+        deck_720.evaluate(f"Reveal.slide({index})")
+        deck_720.wait_for_timeout(30)
+        worst, what = deck_720.evaluate(OVERFLOW)
+        if worst > 1:
+            over.append(f"slide {index}: {what!r} by {worst:.0f} px")
+    assert not over, "\n".join(over)

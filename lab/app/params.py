@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from html import escape
 
-from PyQt6.QtCore import Qt
+from PyQt6.QtCore import QSize, Qt
 from PyQt6.QtGui import QColor
 from PyQt6.QtWidgets import (
     QCheckBox,
@@ -55,6 +55,15 @@ def color_hex(rgb) -> str:
     return QColor.fromRgbF(*(min(max(c, 0.0), 1.0) for c in rgb)).name()
 
 
+class TextBox(QLineEdit):
+    """A line edit at least as wide as its text: a form wraps its row rather than cut it."""
+
+    def minimumSizeHint(self) -> QSize:  # noqa: N802 (Qt style)
+        hint = super().minimumSizeHint()
+        need = self.fontMetrics().horizontalAdvance(self.text()) + 14  # frame and margins
+        return QSize(max(hint.width(), need), hint.height())
+
+
 class ParamControl(QWidget):
     """One parameter's control row; writes through the ModelState, reads on refresh()."""
 
@@ -78,7 +87,7 @@ class ParamControl(QWidget):
             self.swatch = QPushButton()
             self.swatch.setFixedWidth(36)
             self.swatch.clicked.connect(self._pick_color)
-            self.text = QLineEdit()
+            self.text = TextBox()
             self.text.editingFinished.connect(self._from_text)
             layout.addWidget(self.swatch)
             layout.addWidget(self.text, 1)
@@ -137,6 +146,8 @@ class ParamControl(QWidget):
     def _show_text(self, text: str) -> None:
         if self.text.text() != text:
             self.text.setText(text)
+            if isinstance(self.text, TextBox):
+                self.text.updateGeometry()
 
     def refresh(self) -> None:
         """Show the state's value without echoing it back."""
@@ -224,6 +235,8 @@ class ParamPanel(QWidget):
         self.form_host.setParent(None)
         self.form_host = QWidget()
         form = QFormLayout(self.form_host)
+        # A field too wide beside its label (presenter fonts) goes on a line of its own.
+        form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
         form.setContentsMargins(0, 0, 0, 0)
         form.setVerticalSpacing(3)
         self.controls = {}

@@ -158,6 +158,7 @@ class PolarView(View):
             theta_o, [v for _, _, v in lum], spikes, log=s["polar_log"], decades=self.DECADES
         )
         self.scale = scale
+        self.fit_range()
         self.draw_rings(scale)
         ti = math.radians(theta_i)
         if self.marked != theta_i:  # the marks move with the light only
@@ -193,6 +194,16 @@ class PolarView(View):
         self.clip_marks.setData(clipped_x, clipped_y)
         self.draw_legend(lum, scale)
         return False
+
+    def fit_range(self) -> None:
+        """The half disc and room for a line of text above the rim (the direction labels)
+        and below the baseline (the ring values), in pixels: large fonts are never cut."""
+        text = QFontMetrics(self.marks[0][1].textItem.font()).height() + 2
+        height, width = max(self.plot.height(), 40), max(self.plot.width(), 40)
+        unit = max(min((height - 2 * text) / 1.2, width / 2.3), 4.0)  # pixels per unit
+        self.plot.setRange(
+            xRange=(-1.15, 1.15), yRange=(-0.02 - text / unit, 1.12 + text / unit), padding=0
+        )
 
     def place_marks(self, theta_i: float) -> None:
         """Direction labels that never sit on each other: one label when they coincide; the

@@ -63,6 +63,7 @@ class SliceCanvas(QWidget):
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor(*BACKGROUND))
         title_metrics = QFontMetrics(self.font())
+        self.elided: list[str] = []  # captions cut short in this paint
         font = self.axis_font()
         fm = QFontMetrics(font)
         line = fm.height()
@@ -72,18 +73,35 @@ class SliceCanvas(QWidget):
                 painter.drawImage(rect.topLeft(), image)
             else:
                 painter.drawImage(rect, image)
-            painter.setFont(self.font())
             painter.setPen(QColor(color))
-            room = rect.width() + 40
+            # The caption over its image, else over the whole cell (axis margins too), in a
+            # font down to 3/4 of the view's; elided only past that (and noted for the tests).
+            left, _, right, _ = self.margins()
+            caption_font = QFont(self.font())
+            room, x = rect.width() + 40, rect.left() - 20
+            if title_metrics.horizontalAdvance(caption) > room:
+                room, x = left + rect.width() + right - 4, rect.left() - left + 2
+                size = caption_font.pointSizeF()
+                while (
+                    size > 0
+                    and QFontMetrics(caption_font).horizontalAdvance(caption) > room
+                    and caption_font.pointSizeF() > 0.76 * size
+                ):
+                    caption_font.setPointSizeF(caption_font.pointSizeF() - 0.05 * size)
+            metrics = QFontMetrics(caption_font)
+            text = metrics.elidedText(caption, Qt.TextElideMode.ElideRight, room)
+            if text != caption:
+                self.elided.append(caption)
+            painter.setFont(caption_font)
             painter.drawText(
                 QRect(
-                    rect.left() - 20,
+                    x,
                     rect.top() - title_metrics.height() - 3,
                     room,
                     title_metrics.height() + 2,
                 ),
                 Qt.AlignmentFlag.AlignCenter,
-                title_metrics.elidedText(caption, Qt.TextElideMode.ElideRight, room),
+                text,
             )
             painter.setFont(font)
             painter.setPen(QPen(axis, 1))
