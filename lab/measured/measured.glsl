@@ -40,7 +40,21 @@ vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
         ivec3 bin = clamp(ivec3(floor(c)), ivec3(0), size - 1);
         return gain * texelFetch(u_measured, bin, 0).rgb;
     }
-    // Trilinear between bin centres by the texture unit: texel centres sit at bin centres
-    // (i + 0.5), the host sets clamp-to-edge in theta and repeat in phi_d (it is periodic).
-    return gain * texture(u_measured, c / vec3(size)).rgb;
+    // Trilinear between bin centres (i + 0.5) from 8 texel fetches: exact float weights
+    // (a texture unit's filter rounds them to 1/256) and no float-linear extension, so
+    // WebGL2 runs the same code. theta_h and theta_d clamp at their edges; phi_d wraps.
+    vec3 t = c - 0.5;
+    t.yz = clamp(t.yz, vec2(0.0), vec2(size.yz - 1));
+    vec3 base = floor(t);
+    vec3 w = t - base;
+    ivec3 i0 = ivec3(base);
+    i0.x = i0.x < 0 ? i0.x + size.x : i0.x;  // phi_d just below the first centre
+    ivec3 i1 = ivec3((i0.x + 1) % size.x, min(i0.yz + 1, size.yz - 1));
+    #define LAB_TABLE(x, y, z) texelFetch(u_measured, ivec3(x, y, z), 0).rgb
+    vec3 low = mix(mix(LAB_TABLE(i0.x, i0.y, i0.z), LAB_TABLE(i1.x, i0.y, i0.z), w.x),
+                   mix(LAB_TABLE(i0.x, i1.y, i0.z), LAB_TABLE(i1.x, i1.y, i0.z), w.x), w.y);
+    vec3 high = mix(mix(LAB_TABLE(i0.x, i0.y, i1.z), LAB_TABLE(i1.x, i0.y, i1.z), w.x),
+                    mix(LAB_TABLE(i0.x, i1.y, i1.z), LAB_TABLE(i1.x, i1.y, i1.z), w.x), w.y);
+    #undef LAB_TABLE
+    return gain * mix(low, high, w.z);
 }

@@ -17,6 +17,7 @@ from lab.presets import read_preset, shipped_presets
 from lab.resources import data_dir
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
+MEASURED_MODEL = Path(__file__).resolve().parents[1] / "measured" / "measured.glsl"
 
 
 def presets() -> list[dict]:
@@ -60,6 +61,8 @@ def manifest() -> dict:
         "views": views.manifest(),
         "presets": presets(),
         "exercises": exercise_list(),
+        # The measured model's file: a table opened in the page is drawn by it.
+        "measured_model": MEASURED_MODEL.read_text(encoding="utf-8"),
     }
 
 

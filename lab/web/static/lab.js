@@ -8,6 +8,7 @@ import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { ShaderEditor } from "./edit.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
+import { openModelFile } from "./measured.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
@@ -447,7 +448,9 @@ class Panel {
     if (preamble === null) preamble = view === "sphere" ? `const int LIGHT_COUNT = ${lab.lights.length};` : "";
     const key = `${view}|${preamble}|${JSON.stringify(enums)}`;
     if (!this.programs.has(key)) {
-      const source = assembleFragment(this.model, view, lab.files, { target: "300es", preamble, enums, constants: C });
+      // A .brdf file assembles by its own rules (explorer.js).
+      const assemble = this.model.assemble ?? assembleFragment;
+      const source = assemble(this.model, view, lab.files, { target: "300es", preamble, enums, constants: C });
       if (transform) transform(source, this.model);
       this.programs.set(key, compile(this.gl, source.text, source));
     }
@@ -481,6 +484,7 @@ class Panel {
   }
 
   setParams(gl, compiled, suffix = "") {
+    this.model.bind?.(gl, compiled); // a measured table (measured.js)
     for (const p of this.model.params) {
       const location = compiled.uniforms[p.name + suffix] ?? compiled.uniforms[p.name];
       if (location === undefined || p.kind === "enum") continue;
@@ -1256,6 +1260,7 @@ async function load() {
   Object.assign(C, manifest.constants);
   lab.presets = manifest.presets || [];
   lab.exerciseList = manifest.exercises || [];
+  lab.measuredCode = manifest.measured_model; // lab/measured/measured.glsl
   const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
   manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
   // The library's headers come parsed (lab/models.py, checked against header.js by
@@ -1355,7 +1360,7 @@ function buildPage() {
   });
   $("#open-file").addEventListener("change", async (e) => {
     for (const file of e.target.files) {
-      const name = addModelText(file.name, await file.text());
+      const name = await openModelFile(file, lab, addModelText);
       lab.panels.forEach((p) => p.fillPicker());
       addPanel(name);
     }
