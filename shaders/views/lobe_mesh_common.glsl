@@ -50,9 +50,17 @@ vec2 lobe_grid(int i, int j) {
     return vec2(theta, phi);
 }
 
+// Directions by common.glsl's lab_cos_sin (float-precise on every GPU; SwiftShader's sin and
+// cos are coarse, and a sharp lobe amplifies that): the model programs define it after this.
+// The marks' program (lobe_mesh_lines.glsl, which defines VERTEX) has no model and no need.
+#ifndef VERTEX
+vec2 lab_cos_sin(float angle);
 vec3 lobe_direction(vec2 angles) {
-    return vec3(sin(angles.x) * cos(angles.y), sin(angles.x) * sin(angles.y), cos(angles.x));
+    vec2 t = lab_cos_sin(angles.x);
+    vec2 p = lab_cos_sin(angles.y);
+    return vec3(t.y * p.x, t.y * p.y, t.x);
 }
+#endif
 
 // World -> view space.
 vec3 lobe_view(vec3 p) {

@@ -462,6 +462,10 @@ class Panel {
   run(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [] } = {}) {
     const gl = this.gl;
     const compiled = this.program(view, preamble, transform);
+    // The target first: making one binds its textures, which must not replace the inputs.
+    const key = `${width}x${height}`;
+    if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height, true));
+    const target = this.targets.get(key);
     gl.useProgram(compiled.program);
     gl.bindVertexArray(this.vao);
     this.setParams(gl, compiled, suffix);
@@ -470,9 +474,6 @@ class Panel {
       gl.bindTexture(gl.TEXTURE_2D, texture);
     });
     for (const [name, value] of Object.entries(uniforms)) setUniform(gl, compiled, name, value);
-    const key = `${width}x${height}`;
-    if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height, true));
-    const target = this.targets.get(key);
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
     gl.viewport(0, 0, width, height);
     gl.drawArrays(gl.TRIANGLES, 0, 3);

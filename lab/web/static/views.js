@@ -3,6 +3,8 @@
 // object with its spatially varying steps. Each renders on its panel's WebGL context into
 // a float target, read back and shown on a 2D canvas (so a panel needs one context only).
 import { formatG } from "./header.js";
+import { LobeView } from "./lobe3d.js";
+import { SHView } from "./sh.js";
 
 export const SHAPES = ["torus", "sphere", "rounded box", "bumpy sphere"];
 export const MODES = ["geometry only", "single BRDF", "diffuse texture only", "textures drive the BRDF"];
@@ -289,5 +291,6 @@ export class ObjectView {
   }
 }
 
-export const VIEWS = { slice: SliceView, albedo: AlbedoView, object: ObjectView };
-export const VIEW_TITLES = { slice: "(θh, θd) slice", albedo: "albedo", object: "lit object" };
+export const VIEWS = { lobe3d: LobeView, sh: SHView, slice: SliceView, albedo: AlbedoView, object: ObjectView };
+export const VIEW_TITLES = { lobe3d: "3D lobe", sh: "spherical harmonics", slice: "(θh, θd) slice", albedo: "albedo",
+  object: "lit object" };

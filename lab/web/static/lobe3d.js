@@ -1,0 +1,307 @@
+// The 3D lobe: f_r over the hemisphere as a surface drawn by the model's own BRDF in the
+// vertex stage, from the desktop's templates (shaders/views/lobe_mesh*.glsl, as
+// lab/views/lobe3d.py draws them); every panel on one shared scale; drag (or touch) to
+// orbit, wheel to zoom. The marks (horizon, N, L, R, a delta's spike) are drawn on top.
+import { ModelError, formatG } from "./header.js";
+import { VERSION_LINES, assembleFragment, translateLog } from "./assemble.js";
+
+export const LOBE_GRID = [61, 121]; // vertices in theta_o and phi_o (lab/views/lobe3d.py)
+export const LOBE_FAST_GRID = [25, 49]; // while a slider moves
+export const CAMERA = { yaw: -0.6, pitch: 0.35, zoom: 1 }; // LobeCamera's defaults
+const TARGET = [0, 0, 0.3];
+const DISTANCE = 5;
+const SCALE = 0.85;
+const BACKGROUND = [40 / 255, 40 / 255, 44 / 255]; // the desktop lab's
+const MARKS = { N: [0.78, 0.78, 0.78], L: [1.0, 0.82, 0.0], R: [0.47, 0.78, 1.0] };
+
+/** Pixel position (x right, y down) of a world point: LobeCamera.project. */
+export function project(camera, p, width, height) {
+  const [c, s] = [Math.cos(camera.yaw), Math.sin(camera.yaw)];
+  const q = [c * p[0] - s * p[1] - TARGET[0], s * p[0] + c * p[1] - TARGET[1], p[2] - TARGET[2]];
+  const [cp, sp] = [Math.cos(camera.pitch), Math.sin(camera.pitch)];
+  const view = [q[0], q[1] * sp + q[2] * cp, q[2] * sp - q[1] * cp];
+  const w = (DISTANCE - view[2]) / DISTANCE;
+  const short = Math.min(width, height);
+  const x = (view[0] * SCALE * camera.zoom * short) / width / w;
+  const y = (view[1] * SCALE * camera.zoom * short) / height / w;
+  return [((x + 1) / 2) * width, ((1 - y) / 2) * height];
+}
+
+const hexRgb = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16) / 255);
+const css = (rgb, alpha = 1) => `rgba(${rgb.map((c) => Math.round(255 * c)).join(",")},${alpha})`;
+
+function compileProgram(gl, vertex, fragment, source) {
+  const stage = (type, text) => {
+    const shader = gl.createShader(type);
+    gl.shaderSource(shader, text);
+    gl.compileShader(shader);
+    return shader;
+  };
+  const vs = stage(gl.VERTEX_SHADER, vertex);
+  const fs = stage(gl.FRAGMENT_SHADER, fragment);
+  const program = gl.createProgram();
+  gl.attachShader(program, vs);
+  gl.attachShader(program, fs);
+  gl.linkProgram(program);
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
+    const log = (gl.getShaderInfoLog(vs) || "") + (gl.getShaderInfoLog(fs) || "") + (gl.getProgramInfoLog(program) || "");
+    const errors = translateLog(gl.getShaderInfoLog(vs) || "", source);
+    const text = errors.length ? errors.map((e) => `${e.file}:${e.line}: ${e.message}`).join("\n") : log;
+    throw new ModelError(`the shader does not compile in the 3D lobe (its BRDF runs in the vertex stage):\n${text}`);
+  }
+  const uniforms = {};
+  const count = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
+  for (let i = 0; i < count; i++) {
+    const info = gl.getActiveUniform(program, i);
+    uniforms[info.name] = gl.getUniformLocation(program, info.name);
+  }
+  return { program, uniforms };
+}
+
+/** Another panel's peak; [0, 0] where its model cannot be drawn (its panel says why). */
+function otherPeak(panel) {
+  if (!panel.model || !panel.gl || !panel.extra.lobe3d) return [0, 0];
+  try {
+    return panel.extra.lobe3d.peak();
+  } catch {
+    return [0, 0];
+  }
+}
+
+export class LobeView {
+  constructor(panel, env) {
+    this.panel = panel;
+    this.env = env;
+    const { lab } = env;
+    lab.lobe ??= { ...CAMERA };
+    this.canvas = env.el("canvas", { class: "lobe3d", width: lab.size, height: Math.round(lab.size * 0.75) });
+    this.root = env.viewBox(this.canvas, "3D lobe", () => `${panel.name}_lobe3d.png`);
+    this.wire = env.el("input", { type: "checkbox" });
+    this.wire.addEventListener("change", () => env.scheduleRender());
+    this.note = env.el("div", { class: "view-note" });
+    this.root.append(env.el("label", { class: "group", title: "grid lines only: the surface shows through" }, this.wire, " wire"),
+      this.note);
+    this.canvas.addEventListener("pointerdown", (e) => {
+      this.canvas.setPointerCapture(e.pointerId);
+      this.drag = [e.clientX, e.clientY];
+    });
+    this.canvas.addEventListener("pointermove", (e) => {
+      if (!this.drag || !e.buttons) return;
+      const rect = this.canvas.getBoundingClientRect();
+      lab.lobe.yaw += ((e.clientX - this.drag[0]) / rect.width) * Math.PI;
+      lab.lobe.pitch = Math.min(Math.max(lab.lobe.pitch + ((e.clientY - this.drag[1]) / rect.height) * Math.PI, -1.5), 1.5);
+      this.drag = [e.clientX, e.clientY];
+      env.scheduleRender();
+    });
+    this.canvas.addEventListener("pointerup", () => (this.drag = null));
+    this.canvas.addEventListener("wheel", (e) => {
+      e.preventDefault();
+      lab.lobe.zoom = Math.min(Math.max(lab.lobe.zoom * Math.exp(-0.0015 * e.deltaY), 0.2), 8);
+      env.scheduleRender();
+    }, { passive: false });
+  }
+
+  /** [largest value shown, delta spike] of this panel's lobe on the full grid (the scale
+   * does not jump while the coarse grid draws), cached until its inputs change. */
+  peak() {
+    const { lab } = this.env;
+    const light = lab.lights[0];
+    const key = JSON.stringify([this.panel.values, light.theta, light.phi, lab.cosWeighted]);
+    if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return this.peakCache.value;
+    const [rows, cols] = LOBE_GRID;
+    const texels = this.panel.run("lobe_mesh_peak", cols, rows, this.uniforms(LOBE_GRID),
+      { preamble: this.env.lab.files["views/lobe_mesh_common.glsl"] });
+    let peak = 0;
+    for (let k = 0; k < rows * cols; k++) if (Number.isFinite(texels[4 * k + 1])) peak = Math.max(peak, texels[4 * k + 1]);
+    const spike = this.panel.model.delta && Number.isFinite(texels[2]) ? texels[2] : 0;
+    this.peakCache = { model: this.panel.model, key, value: [peak, spike], texels };
+    return this.peakCache.value;
+  }
+
+  uniforms(grid) {
+    const { lab } = this.env;
+    const light = lab.lights[0];
+    return { u_grid: [grid[0], grid[1]], u_light_angles: [(light.theta * Math.PI) / 180, (light.phi * Math.PI) / 180],
+      u_cos: lab.cosWeighted };
+  }
+
+  /** The model's lobe program: the assembled model + lobe_mesh.glsl as the vertex stage. */
+  program() {
+    const { panel } = this;
+    const { lab, C } = this.env;
+    const enums = Object.fromEntries(panel.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, panel.values[p.name]]));
+    const key = `lobe_mesh vertex|${JSON.stringify(enums)}`;
+    if (!panel.programs.has(key)) {
+      const assemble = panel.model.assemble ?? assembleFragment;
+      const source = assemble(panel.model, "lobe_mesh", lab.files, { target: "300es",
+        preamble: lab.files["views/lobe_mesh_common.glsl"], enums, constants: C });
+      const fragment = `${VERSION_LINES["300es"].join("\n")}\n${lab.files["views/lobe_mesh_shade.glsl"]}`;
+      panel.programs.set(key, compileProgram(panel.gl, source.text, fragment, source));
+    }
+    return panel.programs.get(key);
+  }
+
+  /** Two triangles per grid cell (lab/views/lobe3d.py's _lobe_indices). */
+  indices(gl, [rows, cols]) {
+    const key = `${rows}x${cols}`;
+    this.buffers ??= new Map();
+    if (!this.buffers.has(key)) {
+      const out = new Uint16Array((rows - 1) * (cols - 1) * 6);
+      let k = 0;
+      for (let i = 0; i < rows - 1; i++) {
+        for (let j = 0; j < cols - 1; j++) {
+          const v00 = i * cols + j;
+          out.set([v00, v00 + cols, v00 + cols + 1, v00, v00 + cols + 1, v00 + 1], k);
+          k += 6;
+        }
+      }
+      const buffer = gl.createBuffer();
+      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, buffer);
+      gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, out, gl.STATIC_DRAW);
+      this.buffers.set(key, { buffer, count: out.length });
+    }
+    return this.buffers.get(key);
+  }
+
+  target(gl, width, height) {
+    if (this.fbo?.width === width && this.fbo.height === height) return this.fbo;
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const depth = gl.createRenderbuffer();
+    gl.bindRenderbuffer(gl.RENDERBUFFER, depth);
+    gl.renderbufferStorage(gl.RENDERBUFFER, gl.DEPTH_COMPONENT24, width, height);
+    const fbo = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+    gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.RENDERBUFFER, depth);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    this.fbo = { fbo, width, height };
+    return this.fbo;
+  }
+
+  render() {
+    const { lab } = this.env;
+    const gl = this.panel.gl;
+    // One scale for every panel: the largest value (or spike) of all of them.
+    const peaks = lab.panels.map((p) => (p === this.panel ? this.peak() : otherPeak(p)));
+    const shared = Math.max(...peaks.flat(), 0);
+    this.scale = Number.isFinite(shared) && shared > 0 ? shared : 1e-12;
+    this.spike = peaks[lab.panels.indexOf(this.panel)]?.[1] ?? 0;
+    const grid = lab.fast ? LOBE_FAST_GRID : LOBE_GRID;
+    const { width, height } = this.canvas;
+    const compiled = this.program();
+    const target = this.target(gl, width, height);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
+    gl.viewport(0, 0, width, height);
+    gl.clearColor(...BACKGROUND, 1);
+    gl.clearDepth(1);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    gl.useProgram(compiled.program);
+    gl.bindVertexArray(this.panel.vao);
+    this.panel.setParams(gl, compiled);
+    const short = Math.min(width, height);
+    const u = compiled.uniforms;
+    const set = {
+      u_grid: () => gl.uniform2i(u.u_grid, grid[0], grid[1]),
+      u_light_angles: () => gl.uniform2fv(u.u_light_angles, this.uniforms(grid).u_light_angles),
+      u_yaw: () => gl.uniform1f(u.u_yaw, lab.lobe.yaw),
+      u_pitch: () => gl.uniform1f(u.u_pitch, lab.lobe.pitch),
+      u_zoom: () => gl.uniform1f(u.u_zoom, lab.lobe.zoom),
+      u_perspective: () => gl.uniform1i(u.u_perspective, 1),
+      // Clip y flipped (as LobeCamera.uniforms): the first row read back is the top row.
+      u_aspect: () => gl.uniform2f(u.u_aspect, short / width, -short / height),
+      u_peak: () => gl.uniform1f(u.u_peak, this.scale),
+      u_log: () => gl.uniform1i(u.u_log, lab.polarLog ? 1 : 0),
+      u_decades: () => gl.uniform1f(u.u_decades, this.env.C.PLOT_DECADES),
+      u_cos: () => gl.uniform1i(u.u_cos, lab.cosWeighted ? 1 : 0),
+      u_color: () => gl.uniform3fv(u.u_color, hexRgb(this.panel.color)),
+      u_wire: () => gl.uniform1i(u.u_wire, this.wire.checked ? 1 : 0),
+    };
+    for (const [name, apply] of Object.entries(set)) if (u[name]) apply();
+    const blend = gl.getExtension("EXT_float_blend"); // blending into float targets
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LESS);
+    if (blend) {
+      gl.enable(gl.BLEND);
+      gl.blendFuncSeparate(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA, gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+    }
+    gl.frontFace(gl.CW); // the camera draws upside down
+    const { buffer, count } = this.indices(gl, grid);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, buffer);
+    gl.drawElements(gl.TRIANGLES, count, gl.UNSIGNED_SHORT, 0);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, null);
+    gl.disable(gl.DEPTH_TEST);
+    gl.disable(gl.BLEND);
+    gl.frontFace(gl.CCW);
+    this.data = new Float32Array(width * height * 4);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, this.data);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.bindVertexArray(this.panel.vao);
+    this.draw();
+  }
+
+  /** The picture (display values, not radiance: no exposure or sRGB) and the marks. */
+  draw() {
+    const { lab } = this.env;
+    const { width, height } = this.canvas;
+    const image = new ImageData(width, height);
+    for (let k = 0; k < width * height * 4; k++) image.data[k] = Math.round(255 * Math.min(Math.max(this.data[k], 0), 1));
+    const ctx = this.canvas.getContext("2d");
+    ctx.putImageData(image, 0, 0);
+    const camera = lab.lobe;
+    const at = (p) => project(camera, p, width, height);
+    const line = (a, b, rgb, widthPx, dash = []) => {
+      ctx.strokeStyle = css(rgb);
+      ctx.lineWidth = widthPx;
+      ctx.setLineDash(dash);
+      ctx.beginPath();
+      ctx.moveTo(...at(a));
+      ctx.lineTo(...at(b));
+      ctx.stroke();
+      ctx.setLineDash([]);
+    };
+    ctx.strokeStyle = "rgba(140,140,153,0.9)";
+    ctx.lineWidth = 1.3;
+    ctx.beginPath();
+    for (let k = 0; k <= 72; k++) ctx[k ? "lineTo" : "moveTo"](...at([Math.cos((k * Math.PI) / 36), Math.sin((k * Math.PI) / 36), 0]));
+    ctx.stroke();
+    line([-1, 0, 0], [1, 0, 0], [0.45, 0.45, 0.5], 1);
+    line([0, -1, 0], [0, 1, 0], [0.45, 0.45, 0.5], 1);
+    const { theta, phi } = lab.lights[0];
+    const ends = { N: this.env.direction(0, 0), L: this.env.direction(theta, phi), R: this.env.direction(theta, phi + 180) };
+    const font = Math.round((12 * width) / (this.canvas.clientWidth || width));
+    ctx.font = `${font}px system-ui, sans-serif`;
+    ctx.textAlign = "center";
+    ctx.textBaseline = "middle";
+    for (const [name, end] of Object.entries(ends)) {
+      line([0, 0, 0], end.map((c) => 1.15 * c), MARKS[name], 1.6, [4, 3]);
+      ctx.fillStyle = css(MARKS[name]);
+      ctx.fillText(name, ...at(end.map((c) => 1.25 * c)));
+    }
+    if (this.spike > 0) {
+      const r = lab.polarLog
+        ? Math.min(Math.max(Math.log10(this.spike / (this.scale * 10 ** -this.env.C.PLOT_DECADES)), 0) / this.env.C.PLOT_DECADES, 1.5)
+        : Math.min(this.spike / this.scale, 1.5);
+      line([0, 0, 0], ends.R.map((c) => r * c), hexRgb(this.panel.color), 4);
+    }
+    ctx.textAlign = "left";
+    ctx.textBaseline = "alphabetic";
+    ctx.fillStyle = "#bbb";
+    const what = lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ";
+    const scale = lab.polarLog ? `, log over ${this.env.C.PLOT_DECADES} decades` : "";
+    ctx.fillText(`${what}${scale}`, 4, font + 2);
+    ctx.fillText(`radius 1: ${formatG(Number(this.scale.toPrecision(3)))} sr⁻¹`, 4, 2 * font + 4);
+    this.note.textContent = "drag to orbit, wheel to zoom" + (this.spike > 0 ? `; the line along R: the δ spike, ρ = ${formatG(Number(this.spike.toPrecision(3)))}` : "");
+  }
+
+  /** The float picture (display values over the background, row 0 at the top), its scale,
+   * the camera, and the value at every vertex of the full grid (row i = theta_o). */
+  read() {
+    const { width, height } = this.canvas;
+    const grid = Array.from({ length: LOBE_GRID[0] * LOBE_GRID[1] }, (_, k) => this.peakCache?.texels[4 * k]);
+    return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid, camera: { ...this.env.lab.lobe } };
+  }
+}
