@@ -10,6 +10,8 @@ import threading
 import webbrowser
 from pathlib import Path
 
+from lab.web.bench import ALL_VIEWS
+
 DEFAULT_DECK_DIR = "out/slides"
 
 
@@ -134,8 +136,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--steps", type=int, default=120, help="slider positions to time")
     p.add_argument(
         "--views",
-        default="slice,albedo,object",
-        help="views shown besides sphere and polar (comma-separated; '' for none)",
+        default=ALL_VIEWS,
+        help="views shown besides sphere and polar (comma-separated; '' for none; "
+        f"default: all, {ALL_VIEWS})",
     )
     p.set_defaults(func=cmd_bench)
 
