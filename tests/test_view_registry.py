@@ -29,8 +29,8 @@ def extra_view():
 
 def test_the_lab_views_are_registered():
     names = [v.name for v in views.all_views()]
-    assert names == ["sphere", "polar", "lobe3d", "sh", "slice", "albedo", "object", "ibl"]
-    assert views.plot_views() == ["sphere", "polar", "lobe3d", "slice", "albedo", "ibl"]
+    assert names == ["sphere", "polar", "lobe3d", "sh", "terms", "slice", "albedo", "object", "ibl"]
+    assert views.plot_views() == ["sphere", "polar", "lobe3d", "terms", "slice", "albedo", "ibl"]
     choices = next(
         a.choices
         for a in build_parser()._subparsers._group_actions[0].choices["render"]._actions

@@ -7,7 +7,7 @@ import tempfile
 from dataclasses import dataclass
 
 FIRST_RENDER_TARGET_MS = 300.0
-ALL_VIEWS = "lobe3d,sh,slice,albedo,object"  # with the sphere and the polar plot: every view
+ALL_VIEWS = "lobe3d,sh,terms,slice,albedo,object"  # with the sphere and the polar plot: every view
 SLIDER_P95_TARGET_MS = 33.0
 
 

@@ -30,17 +30,27 @@ vec3 fresnel_F(float VoH) {
     return F_schlick(f0, VoH);
 }
 
-vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+// The three terms on their own (also drawn by the microfacet terms view, views/terms.glsl).
+void MICROFACET_TERMS(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y, out float D, out float G, out vec3 F) {
     float NoL = dot(N, L);
     float NoV = dot(N, V);
-    if (NoL <= 0.0 || NoV <= 0.0) return vec3(0.0);
     vec3 H = normalize(L + V);
     float NoH = dot(N, H);
     // V.H = |L + V| / 2 for unit L, V: accurate where dot(V, H) is not, at grazing mirror
     // pairs (L + V nearly vertical, its tilt error times |V| = 1 would swamp V.H there).
     float VoH = 0.5 * length(L + V);
-    float D = microfacet_D(NoH);
-    float G = G_vgroove(NoL, NoV, NoH, VoH);
-    vec3 F = fresnel_F(VoH);
+    D = microfacet_D(NoH);
+    G = G_vgroove(NoL, NoV, NoH, VoH);
+    F = fresnel_F(VoH);
+}
+
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    float NoL = dot(N, L);
+    float NoV = dot(N, V);
+    if (NoL <= 0.0 || NoV <= 0.0) return vec3(0.0);
+    float D;
+    float G;
+    vec3 F;
+    MICROFACET_TERMS(L, V, N, X, Y, D, G, F);
     return kd * INV_PI + ks * F * (D * G / (PI * NoL * NoV));
 }

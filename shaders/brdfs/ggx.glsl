@@ -15,6 +15,16 @@
 // @param alpha float 0.01 1 0.15 log | roughness (GGX width, alpha = slope scale)
 // @param f0 color 0.04 0.04 0.04 | Fresnel reflectance at normal incidence
 
+// The three terms on their own, for the microfacet terms view (views/terms.glsl): the BRDF
+// below uses V2 instead of G2, which stays finite at the horizon.
+void MICROFACET_TERMS(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y, out float D, out float G, out vec3 F) {
+    vec3 H = normalize(L + V);
+    vec3 NxH = cross(N, H);
+    D = D_ggx_sin2(dot(N, H), dot(NxH, NxH), alpha);
+    G = G2_smith_ggx(dot(N, L), dot(N, V), alpha);
+    F = F_schlick(f0, 0.5 * length(L + V));
+}
+
 vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     float NoL = dot(N, L);
     float NoV = dot(N, V);

@@ -865,7 +865,7 @@ async function openExercise(name) {
 }
 
 // What views.js needs from the page.
-const viewEnv = { lab, C, el, viewBox, direction, scheduleRender: () => scheduleRender() };
+const viewEnv = { lab, C, el, viewBox, direction, floatTexture, scheduleRender: () => scheduleRender() };
 
 // -- page-level actions ---------------------------------------------------------------------
 let pending = 0;

@@ -5,6 +5,7 @@
 import { formatG } from "./header.js";
 import { LobeView } from "./lobe3d.js";
 import { SHView } from "./sh.js";
+import { TermsView } from "./terms.js";
 
 export const SHAPES = ["torus", "sphere", "rounded box", "bumpy sphere"];
 export const MODES = ["geometry only", "single BRDF", "diffuse texture only", "textures drive the BRDF"];
@@ -291,6 +292,7 @@ export class ObjectView {
   }
 }
 
-export const VIEWS = { lobe3d: LobeView, sh: SHView, slice: SliceView, albedo: AlbedoView, object: ObjectView };
-export const VIEW_TITLES = { lobe3d: "3D lobe", sh: "spherical harmonics", slice: "(θh, θd) slice", albedo: "albedo",
-  object: "lit object" };
+export const VIEWS = { lobe3d: LobeView, sh: SHView, terms: TermsView, slice: SliceView, albedo: AlbedoView,
+  object: ObjectView };
+export const VIEW_TITLES = { lobe3d: "3D lobe", sh: "spherical harmonics", terms: "D, G, F", slice: "(θh, θd) slice",
+  albedo: "albedo", object: "lit object" };
