@@ -1,6 +1,6 @@
 """The page's spherical-harmonics view: the lobe from the model's GLSL on the quadrature
 grid, its coefficients and the error of every order agree with the desktop's
-(lab/app/sh_view.py's sh_data on the EGL render)."""
+(lab/app/views/sh.py's sh_data on the EGL render)."""
 
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ def page(tmp_path_factory):
     [("lambert", {}), ("phong", {"ke": 40.0}), ("cook_torrance", {"m": 0.3}), ("ward", {})],
 )
 def test_sh_matches_desktop(page, renderer, name, values, output_dir):
-    from lab.app.sh_view import sh_data
+    from lab.app.views.sh import sh_data
 
     page.evaluate("([n, v]) => brdfLab.setModel(0, n, v)", [name, values])
     page.evaluate("brdfLab.state.shOrder = 6")

@@ -141,7 +141,7 @@ VIEW = ViewSpec(
     title="Microfacet terms D, G, F",
     dock=("right", 1),
     tab_of="sh",  # behind the spherical harmonics: the default layout keeps its sizes
-    widget="lab.app.terms_view:TermsView",
+    widget="lab.app.views.terms:TermsView",
     plot=plot,
     order=45,
 )

@@ -8,7 +8,7 @@ import numpy as np
 import pyqtgraph as pg
 from PyQt6.QtCore import Qt
 
-from lab.app.views import LUMA, View, look_key, pen, state_key
+from lab.app.views.base import LUMA, View, look_key, pen, state_key
 from lab.app.widgets import LiveText
 from lab.views.terms import has_terms, microfacet_terms
 
