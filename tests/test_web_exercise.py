@@ -118,3 +118,38 @@ def test_exercise_mode_shows_reference_yours_and_signed_difference(page, output_
     )
     assert red_blue[0] > 20 and red_blue[1] == 0, red_blue
     page.locator("#exercise").screenshot(path=output_dir / "web_exercise.png")
+
+
+# Wrong submissions the grader's diagnosis names in different ways: a stored known mistake,
+# the wrong one of two declared terms with the shape of its error, the shape of the whole
+# error (a factor), the lobe's width.
+DIAGNOSED = [
+    ("02_phong", "phong.glsl", ("kd * INV_PI", "kd")),
+    ("02_phong", "phong.glsl", ("ks * pow(RoV, ke)", "ks * 3.0 * pow(RoV, ke)")),
+    ("02_phong", "phong.glsl", ("pow(RoV, ke)", "pow(RoV, ke * 0.5)")),
+    ("07_geometric_attenuation", "geometry.glsl", ("min(1.0", "max(1.0")),
+]
+
+
+def likely(message: str) -> str:
+    """The diagnosis sentence (the grader's output goes on with a table of rows)."""
+    return message.split("Likely: ", 1)[1].split("\n")[0] if "Likely: " in message else ""
+
+
+@pytest.mark.parametrize("exercise,student_file,slip", DIAGNOSED)
+def test_practice_diagnosis_equals_the_grader(page, tmp_path, exercise, student_file, slip):
+    """Each failed check shows the grader's own 'Likely: ...' sentence (or none, as it)."""
+    solution = (ROOT / "solutions" / exercise / student_file).read_text()
+    assert slip[0] in solution
+    path = tmp_path / student_file
+    path.write_text(solution.replace(slip[0], slip[1], 1))
+    graded = grade(exercise, path, tmp_path)
+    shown = practice(page, exercise, path.read_text())
+    assert not all(passed for passed, _ in graded.values())
+    named = 0
+    for name, (passed, message) in graded.items():
+        assert shown[name][0] == passed, (name, shown[name], message)
+        assert likely(shown[name][1]) == likely(message), (name, shown[name][1], message)
+        named += bool(likely(message))
+    assert named, f"the grader names no likely mistake for {slip}: pick another slip"
+    assert page.errors == []

@@ -9,6 +9,12 @@ from dataclasses import dataclass
 FIRST_RENDER_TARGET_MS = 300.0
 ALL_VIEWS = "lobe3d,sh,terms,slice,albedo,object"  # with the sphere and the polar plot: every view
 SLIDER_P95_TARGET_MS = 33.0
+VIEWPORT = {"width": 1280, "height": 2000}
+# Every view box that is not wholly inside the window.
+OFFSCREEN_JS = """[...document.querySelectorAll('#panels .view')].filter(v => {
+  const r = v.getBoundingClientRect();
+  return r.top < 0 || r.bottom > innerHeight || r.left < 0 || r.right > innerWidth;
+}).map(v => v.dataset.view)"""
 
 
 @dataclass
@@ -19,6 +25,7 @@ class WebBench:
     frame_ms: list[float]
     renderer: str
     views: str = ""
+    offscreen: tuple[str, ...] = ()  # views not wholly inside the window (they would wait)
 
     @property
     def p95(self) -> float:
@@ -42,9 +49,10 @@ class WebBench:
         )
         shown = f"sphere, polar, {self.views.replace(',', ', ')}" if self.views else "sphere, polar"
         header = f"web lab, headless Chromium ({self.renderer}), {self.model} at "
-        return "\n".join(
-            [header + f"{self.size}x{self.size}, views {shown}:", first_line, slider_line]
-        )
+        lines = [header + f"{self.size}x{self.size}, views {shown}:", first_line, slider_line]
+        if self.offscreen:
+            lines.append(f"  NOT all visible (off screen: {', '.join(self.offscreen)})")
+        return "\n".join(lines)
 
 
 def first_float_param(model_name: str) -> str:
@@ -76,11 +84,13 @@ def run(
         frames: list[float] = []
         renderer = "?"
         for _ in range(max(1, loads)):
-            page = browser.new_page(viewport={"width": 1280, "height": 1000})
+            # Tall enough that every view is on screen: views out of sight do not render.
+            page = browser.new_page(viewport=VIEWPORT)
             shown = f"&views={views}" if views else ""
             page.goto(f"{url}index.html#model={model}&size={size}&light=30,0{shown}")
             page.evaluate("window.brdfLab.ready")
             first.append(page.evaluate("brdfLab.state.firstRenderMs"))
+            offscreen = page.evaluate(OFFSCREEN_JS)
             if not frames:
                 renderer = page.evaluate(
                     "(() => { const gl = brdfLab.panel(0).gl;"
@@ -91,4 +101,4 @@ def run(
                 page.evaluate(f"brdfLab.sliderFrames(0, '{param}', 10)")  # warm up
                 frames = page.evaluate(f"brdfLab.sliderFrames(0, '{param}', {steps})")
             page.close()
-    return WebBench(size, model, first, frames, renderer, views)
+    return WebBench(size, model, first, frames, renderer, views, tuple(offscreen))

@@ -9,30 +9,70 @@ and compares as the probe, polar and sphere kinds do; a kind it cannot run is le
 
 from __future__ import annotations
 
+import base64
+import zlib
 from dataclasses import asdict
 
 import numpy as np
 
+from lab.grading import mistakes
 from lab.grading.exercise import Exercise, ExerciseError, find_exercises
 from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.resources import data_dir
 
 
-def check_entry(exercise: Exercise, check, values) -> dict | None:
-    """One check: its settings, inputs and committed reference (None: the page cannot
-    run this kind of check; its kind says so)."""
-    practice = kind_of(check).practice(exercise, check, values)
+def _packed(array: np.ndarray) -> str:
+    """Little-endian bytes (float32 or uint8), zlib-compressed, base64: the page inflates
+    them with DecompressionStream("deflate")."""
+    dtype = "<u1" if array.dtype == np.uint8 else "<f4"
+    raw = np.ascontiguousarray(array, dtype=dtype).tobytes()
+    return base64.b64encode(zlib.compress(raw, 9)).decode()
+
+
+def diagnosis_entry(check, stored: dict, hints: dict) -> dict:
+    """What the grader's explainer reads for this check in practice mode (stored, not live):
+    each known mistake's or mutant's values ("candidates", uint8 RGBA images for spheres)
+    and the solution's values with each declared term alone ("terms")."""
+    prefix = f"{check.name}|"
+    candidates, terms = {}, {}
+    for key, value in stored.items():
+        if not key.startswith(prefix):
+            continue
+        name = key[len(prefix) :]
+        if name.startswith("term."):
+            terms[name[len("term.") :]] = _packed(value[..., :3])
+        elif name in hints:
+            candidates[name] = _packed(value)
+    return {"candidates": candidates, "terms": terms}
+
+
+def check_entry(exercise: Exercise, check, values, stored=None, hints=None) -> dict | None:
+    """One check: its settings, inputs, committed reference and the stored values its
+    diagnosis reads (None: the page cannot run this kind of check; its kind says so)."""
+    kind = kind_of(check)
+    practice = kind.practice(exercise, check, values)
     if practice is None:
         return None
     entry = asdict(check)
     entry["lights"] = [[lt.theta, lt.phi, list(lt.rgb)] for lt in check.lights]
     entry["params"] = {k: list(v) if isinstance(v, tuple) else v for k, v in check.params.items()}
+    entry["diagnosis"] = diagnosis_entry(check, stored or {}, hints or {})
+    if check.kind == "polar":  # the lobe's angle in the plot (negative: the light's side)
+        angles = kind.angles(check)
+        theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
+        entry["lobe_theta"] = theta.tolist()
     return {**entry, **practice}
 
 
 def exercise_entry(exercise: Exercise) -> dict:
+    hints = mistakes.read_hints(exercise)
+    try:
+        with np.load(exercise.references / mistakes.VALUES) as data:
+            stored = {k: data[k] for k in data.files}
+    except (OSError, ValueError):
+        stored = {}  # no diagnosis references: the page names no likely mistake
     with np.load(exercise.references / VALUES_FILE) as values:
-        entries = [check_entry(exercise, c, values) for c in exercise.checks]
+        entries = [check_entry(exercise, c, values, stored, hints) for c in exercise.checks]
     checks = [entry for entry in entries if entry is not None]
     return {
         "name": exercise.name,
@@ -44,6 +84,11 @@ def exercise_entry(exercise: Exercise) -> dict:
         "replaces": exercise.replaces,
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
+        "hints": hints,  # the grader's hint of each stored mistake (references/diagnosis.json)
+        "terms": {
+            k: {n: list(v) if isinstance(v, tuple) else v for n, v in t.items()}
+            for k, t in mistakes.read_terms(exercise).items()
+        },
     }
 
 

@@ -51,12 +51,14 @@ def library_headers() -> dict[str, dict]:
 
 def manifest() -> dict:
     """What the page loads: the model names and their parsed headers, every shader file
-    (paths under shaders/), the lab's constants and the shipped presets."""
+    (paths under shaders/, and their texts: one request instead of forty at load), the
+    lab's constants and the shipped presets."""
     files = sorted(p.relative_to(SHADER_DIR).as_posix() for p in SHADER_DIR.rglob("*.glsl"))
     return {
         "models": model_names(),
         "library": library_headers(),
         "files": files,
+        "sources": {f: (SHADER_DIR / f).read_text(encoding="utf-8") for f in files},
         "constants": constants.as_dict(),
         "views": views.manifest(),
         "presets": presets(),

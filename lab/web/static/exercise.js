@@ -5,6 +5,7 @@
 // (compare_values, compare_image) with the same tolerances and messages.
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { topFirst } from "./views.js";
+import { explain, prepare, rows } from "./diagnosis.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -191,6 +192,47 @@ function sphereWhere(check, stop, env) {
   return `pixel (${stop.x}, ${check.size - 1 - stop.y}) of the sphere (θi = ${thetaI}°, θo = ${deg(n[2])}°)`;
 }
 
+/** The panel's model at direction pairs (flat degrees: θi, φi, θo, φo per row) as RGBA
+ * floats. The directions are made here in double precision (the probe view): built-in sin
+ * and cos are coarse on some GPUs (SwiftShader), the grader's llvmpipe's are not. */
+function probeValues(panel, env, degrees, n) {
+  const gl = panel.gl;
+  const L = new Float32Array(4 * n);
+  const V = new Float32Array(4 * n);
+  for (let i = 0; i < n; i++) {
+    L.set(env.direction(degrees[4 * i], degrees[4 * i + 1]), 4 * i);
+    V.set(env.direction(degrees[4 * i + 2], degrees[4 * i + 3]), 4 * i);
+  }
+  const textures = [env.floatTexture(gl, n, L), env.floatTexture(gl, n, V)];
+  try {
+    return panel.run("probe", n, 1, { u_L: 0, u_V: 1 }, { textures });
+  } finally {
+    textures.forEach((t) => gl.deleteTexture(t));
+  }
+}
+
+/** The grader's diagnosis of a failed check ('Likely: ...' or ''), from the stored
+ * references as `brdf-lab grade` reads them; the student's model renders what it needs. */
+function diagnose(panel, exercise, check, result, env) {
+  if (check.kind === "sphere") return explain(exercise, check, null, result.student.data, null, null, env.C.LUMA);
+  const degrees = fromBase64(check.angles, Float32Array);
+  const angles = rows4(degrees, check.count);
+  const evaluate = (params, at) => {
+    const saved = panel.values;
+    panel.values = checkValues(panel.model, params);
+    try {
+      const flat = at ? Float32Array.from(at.flat()) : degrees;
+      return rows(probeValues(panel, env, flat, check.count), check.count, 4);
+    } finally {
+      panel.values = saved;
+    }
+  };
+  const expected = rows(check.expectedValues, check.count);
+  return explain(exercise, check, expected, rows(result.got, check.count, 4), angles, evaluate, env.C.LUMA);
+}
+
+const rows4 = (flat, n) => Array.from({ length: n }, (_, i) => Array.from(flat.subarray(4 * i, 4 * i + 4)));
+
 /** Check parameters as the panel holds values (colours as arrays). */
 function checkValues(model, params) {
   return { ...defaults(model), ...params };
@@ -217,32 +259,18 @@ export function runCheck(panel, check, env) {
       check.referencePixels ??= fromBase64(check.reference, Uint8Array);
       if (panel.lastLoop) return loopFailure(check, panel, env, sphereWhere(check, panel.lastLoop, env));
       const result = compareImage(check, check.referencePixels, raw);
-      return { ...result, student: toneImage(raw, size) };
+      return { ...result, student: toneImage(raw, size), compared: true };
     }
-    // The directions are made here in double precision (the probe view): built-in sin and
-    // cos are coarse on some GPUs (SwiftShader), the grader's llvmpipe's are not.
-    const gl = panel.gl;
-    const n = check.count;
     const degrees = fromBase64(check.angles, Float32Array);
-    const L = new Float32Array(4 * n);
-    const V = new Float32Array(4 * n);
-    for (let i = 0; i < n; i++) {
-      L.set(env.direction(degrees[4 * i], degrees[4 * i + 1]), 4 * i);
-      V.set(env.direction(degrees[4 * i + 2], degrees[4 * i + 3]), 4 * i);
+    const got = probeValues(panel, env, degrees, check.count);
+    if (panel.lastLoop) {
+      const k = Math.min(panel.lastLoop.x, check.count - 1);
+      const row = degrees.slice(4 * k, 4 * k + 4);
+      const where = `(θi, φi, θo, φo) = (${[...row].map((d) => `${d.toFixed(1)}°`).join(", ")})`;
+      return loopFailure(check, panel, env, where);
     }
-    const textures = [env.floatTexture(gl, n, L), env.floatTexture(gl, n, V)];
-    try {
-      const got = panel.run("probe", n, 1, { u_L: 0, u_V: 1 }, { textures });
-      if (panel.lastLoop) {
-        const row = degrees.slice(4 * Math.min(panel.lastLoop.x, n - 1), 4 * Math.min(panel.lastLoop.x, n - 1) + 4);
-        const where = `(θi, φi, θo, φo) = (${[...row].map((d) => `${d.toFixed(1)}°`).join(", ")})`;
-        return loopFailure(check, panel, env, where);
-      }
-      check.expectedValues ??= fromBase64(check.expected, Float32Array);
-      return compareValues(check, check.expectedValues, got);
-    } finally {
-      textures.forEach((t) => gl.deleteTexture(t));
-    }
+    check.expectedValues ??= fromBase64(check.expected, Float32Array);
+    return { ...compareValues(check, check.expectedValues, got), compared: true, got };
   } finally {
     panel.values = saved;
   }
@@ -275,12 +303,13 @@ export class ExerciseMode {
     const { lab } = this.env;
     const exercise = (await this.load()).find((e) => e.name === name);
     if (!exercise) throw new Error(`no exercise ${name}`);
+    await prepare(exercise); // the stored mistakes' values, inflated once
     this.exercise = exercise;
     const path = exercise.student_file;
     lab.models[exercise.name] = buildSubmission(exercise, exercise.stub, path, lab.models);
     if (!lab.order.includes(exercise.name)) lab.order.push(exercise.name);
     this.panel = lab.panels.find((p) => p.name === exercise.name) || this.env.addPanel(exercise.name);
-    this.env.openEditor(this.panel, exercise.stub, {
+    await this.env.openEditor(this.panel, exercise.stub, {
       path,
       text: exercise.stub,
       build: (text) => buildSubmission(exercise, text, path, lab.models),
@@ -298,7 +327,18 @@ export class ExerciseMode {
         return { check, passed: false, message: `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}` };
       }
       try {
-        return { check, ...runCheck(this.panel, check, this.env) };
+        const result = runCheck(this.panel, check, this.env);
+        if (result.compared && !result.passed) {
+          // As the grader: the likely mistake ends the message (a diagnosis never breaks a check).
+          try {
+            result.diagnosis = diagnose(this.panel, exercise, check, result, this.env);
+          } catch (err) {
+            if (err.errors === undefined && !(err instanceof ModelError)) console.warn(err);
+            result.diagnosis = "";
+          }
+          if (result.diagnosis) result.message += `. ${result.diagnosis}`;
+        }
+        return { check, ...result };
       } catch (err) {
         if (!err.errors && !(err instanceof ModelError)) throw err;
         return { check, passed: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` };

@@ -5,7 +5,6 @@ import { direction, planeOfIncidence } from "./geometry.js";
 import { SLIDER_STEPS, parseRgb, parseValue, sliderToValue, valueToSlider } from "./values.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
-import { ShaderEditor } from "./edit.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 import { openModelFile } from "./measured.js";
@@ -14,6 +13,7 @@ const C = {}; // the lab's constants (lab/constants.py), from the manifest
 const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
 const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
+const SPHERE_FAST_MIN = 384; // spheres this large draw at half resolution while a slider moves
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
 // Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
@@ -23,6 +23,7 @@ const DISPLAY_SHADER = `#version 300 es
 precision highp float;
 uniform highp sampler2D u_image;
 uniform float u_scale;
+uniform int u_step; // 2: a half-resolution render (while a slider moves), each texel 2x2
 out vec4 frag_color;
 // Linear radiance -> sRGB, as lab/plots.py writes PNGs (clamped, no tone curve).
 vec3 srgb(vec3 c) {
@@ -30,7 +31,7 @@ vec3 srgb(vec3 c) {
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
 }
 void main() {
-    vec4 v = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0);
+    vec4 v = texelFetch(u_image, ivec2(gl_FragCoord.xy) / u_step, 0);
     frag_color = vec4(srgb(v.rgb * u_scale) * v.a, v.a);
 }
 `;
@@ -265,6 +266,7 @@ class Panel {
     this.vao = gl.createVertexArray();
     this.targets = new Map(); // float render targets of the other views, by size
     this.target = floatTarget(gl, lab.size, lab.size);
+    this.coarseTarget = null; // half resolution, while a slider moves (made on first use)
     this.probeTarget = floatTarget(gl, POLAR_STEPS, 1, true);
     this.display = compile(gl, DISPLAY_SHADER, null);
     this.canvas.addEventListener("pointerdown", (e) => {
@@ -300,7 +302,10 @@ class Panel {
       if (!lab.views.includes(name)) delete this.extra[name];
     }
     for (const name of lab.views) {
-      if (!this.extra[name] && this.gl) this.extra[name] = new VIEWS[name](this, viewEnv);
+      if (!this.extra[name] && this.gl) {
+        this.extra[name] = new VIEWS[name](this, viewEnv);
+        watchVisibility(this.extra[name]);
+      }
     }
     this.viewsBox.replaceChildren(...lab.views.filter((n) => this.extra[n]).map((n) => this.extra[n].root));
     this.displaySize(parseFloat(this.canvas.style.width) || lab.size);
@@ -502,7 +507,12 @@ class Panel {
     try {
       this.renderSphere(gl);
       this.renderPolar(gl);
-      for (const name of lab.views) this.extra[name]?.render();
+      for (const name of lab.views) {
+        const view = this.extra[name];
+        // Off screen a view waits: it draws when scrolled into sight (watchVisibility).
+        if (view) view.stale = view.offscreen === true;
+        if (view && !view.stale) view.render();
+      }
       this.showError("");
     } catch (err) {
       if (!(err instanceof CompileFailure || err instanceof ModelError)) throw err;
@@ -523,19 +533,30 @@ class Panel {
       dirs.set(direction(light.theta, light.phi), 3 * i);
       rgb.set(light.rgb, 3 * i);
     });
-    gl.uniform2f(u.u_resolution, lab.size, lab.size);
+    // While the hand moves, half the resolution: a quarter of the cost at 512 px.
+    const step = lab.fast && lab.size >= SPHERE_FAST_MIN ? 2 : 1;
+    let target = this.target;
+    if (step === 2) {
+      const half = Math.ceil(lab.size / 2);
+      this.coarseTarget ??= floatTarget(gl, half, half);
+      target = this.coarseTarget;
+    }
+    this.sphereStep = step;
+    gl.uniform2f(u.u_resolution, target.width, target.height);
     if (u.u_light_dir) gl.uniform3fv(u.u_light_dir, dirs);
     if (u.u_light_rgb) gl.uniform3fv(u.u_light_rgb, rgb);
     if (u.u_ambient) gl.uniform3fv(u.u_ambient, lab.ambient);
     if (u.u_multiply_cos) gl.uniform1i(u.u_multiply_cos, 1);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
-    gl.viewport(0, 0, lab.size, lab.size);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
+    gl.viewport(0, 0, target.width, target.height);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     // Show it: exposure and the sRGB curve, on the canvas.
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.useProgram(this.display.program);
     gl.activeTexture(gl.TEXTURE0);
-    gl.bindTexture(gl.TEXTURE_2D, this.target.texture);
+    gl.bindTexture(gl.TEXTURE_2D, target.texture);
+    gl.uniform1i(this.display.uniforms.u_step, step);
+    gl.viewport(0, 0, lab.size, lab.size);
     gl.uniform1i(this.display.uniforms.u_image, 0);
     gl.uniform1f(this.display.uniforms.u_scale, Math.pow(2, lab.exposure));
     gl.drawArrays(gl.TRIANGLES, 0, 3);
@@ -843,8 +864,12 @@ function installModel(panel, model) {
 
 /** Opens the editor on a panel's model; `options` (exercise mode): {path, build(text),
  * onResult(errors)} and `original` the stub. */
-function openEditor(panel, original = null, options = {}) {
-  if (!editor) editor = new ShaderEditor($("#editor"), { lab, el, tryCompile, install: installModel });
+async function openEditor(panel, original = null, options = {}) {
+  // The editor (CodeMirror, 400 kB) loads when first opened, not with the page.
+  if (!editor) {
+    const { ShaderEditor } = await import("./edit.js");
+    editor ??= new ShaderEditor($("#editor"), { lab, el, tryCompile, install: installModel });
+  }
   const name = panel.name;
   originals[name] ??= original ?? lab.files[`brdfs/${name}.glsl`] ?? panel.model?.code ?? "";
   if (!options.build && exercises?.exercise?.name === name) return exercises.open(name);
@@ -867,6 +892,22 @@ async function openExercise(name) {
 // What views.js needs from the page.
 const viewEnv = { lab, C, el, viewBox, direction, floatTexture, scheduleRender: () => scheduleRender() };
 
+/** Views off screen skip their (costly) renders; one that comes into sight and missed a
+ * render draws then. Until the first report a view counts as visible. */
+const seen = new IntersectionObserver((entries) => {
+  let missed = false;
+  for (const entry of entries) {
+    const view = entry.target.labView;
+    view.offscreen = !entry.isIntersecting;
+    missed ||= entry.isIntersecting && view.stale;
+  }
+  if (missed) scheduleRender();
+});
+function watchVisibility(view) {
+  view.root.labView = view;
+  seen.observe(view.root);
+}
+
 // -- page-level actions ---------------------------------------------------------------------
 let pending = 0;
 let settle = 0;
@@ -885,6 +926,14 @@ function moving() {
 }
 addEventListener("input", (e) => e.target.type === "range" && moving(), true);
 addEventListener("pointermove", (e) => e.buttons && e.target.tagName === "CANVAS" && moving(), true);
+
+/** Full quality now (readers want what the page shows once the hand stops). */
+function settleNow() {
+  if (!lab.fast) return;
+  clearTimeout(settle);
+  lab.fast = false;
+  renderNow();
+}
 
 function scheduleRender() {
   writeHash();
@@ -1262,7 +1311,9 @@ async function load() {
   lab.presets = manifest.presets || [];
   lab.exerciseList = manifest.exercises || [];
   lab.measuredCode = manifest.measured_model; // lab/measured/measured.glsl
-  const texts = await Promise.all(manifest.files.map((f) => fetchText(`shaders/${f}`)));
+  // The texts come with the manifest (one request); a manifest without them, file by file.
+  const sources = manifest.sources || {};
+  const texts = await Promise.all(manifest.files.map((f) => sources[f] ?? fetchText(`shaders/${f}`)));
   manifest.files.forEach((f, i) => (lab.files[f] = texts[i]));
   // The library's headers come parsed (lab/models.py, checked against header.js by
   // tests/test_web_mirrors.py): the page parses only the files a user opens or edits.
@@ -1485,8 +1536,8 @@ window.brdfLab = {
   notes: () => lab.notes.slice(),
   applyPreset: (i) => applyPreset(i),
   /** Opens the editor on panel i; returns its API (text, setText, errors, check). */
-  edit(i = 0) {
-    openEditor(lab.panels[i]);
+  async edit(i = 0) {
+    await openEditor(lab.panels[i]);
     return true;
   },
   get editor() {
@@ -1509,6 +1560,7 @@ window.brdfLab = {
   },
   /** The float sphere of panel i, base64 float32 RGBA, row 0 at the top. */
   readSphere(i = 0) {
+    settleNow();
     const { width, height, data } = lab.panels[i].readSphere();
     return { width, height, data: toBase64(data) };
   },
@@ -1517,12 +1569,11 @@ window.brdfLab = {
   /** Another view of panel i: images as {width, height, data} (base64 float32 RGBA, row 0
    * at the top); the albedo as {thetas, rgb, gain}. */
   readView(i, name) {
-    if (lab.fast) {
-      clearTimeout(settle);
-      lab.fast = false;
-      renderNow();
-    }
-    const out = lab.panels[i].extra[name].read();
+    settleNow();
+    const view = lab.panels[i].extra[name];
+    if (view.stale) view.render(); // off screen: drawn for the reader
+    view.stale = false;
+    const out = view.read();
     return out.data ? { ...out, data: toBase64(out.data) } : out;
   },
   /** Shows these views (keys of VIEWS) and renders. */

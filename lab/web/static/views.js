@@ -17,6 +17,9 @@ export const ALBEDO = { theta0: 0, step: 2.5, count: 36, samples: 192, wedges: 4
 export const ALBEDO_FAST = { theta0: 0, step: 85 / 8, count: 9, samples: 32, wedges: 16 };
 export const SLICE_FAST = 96;
 export const SLICE_MAX = 256;
+// The object is ray-marched (about 1 µs a pixel on SwiftShader): at most 96 px square while
+// the hand moves, the full render once it stops.
+export const OBJECT_FAST = 96;
 
 /** Linear RGB(A) floats (rows from the bottom) -> an sRGB ImageData (rows from the top),
  * times 2^exposure and clamped, as the spheres are shown. */
@@ -264,7 +267,7 @@ export class ObjectView {
 
   render() {
     const { lab, C, direction } = this.env;
-    const n = lab.fast ? Math.ceil(lab.size / 2) : lab.size;
+    const n = lab.fast ? Math.min(lab.size, OBJECT_FAST) : lab.size;
     const dirs = [];
     const rgb = [];
     for (let i = 0; i < C.MAX_LIGHTS; i++) {

@@ -1,0 +1,379 @@
+// The grader's diagnosis of a failed check, in the page (practice mode): the same evidence
+// in the same order as lab/grading/explain.py with the stored references (never live), and
+// the same tests and sentences as lab/grading/diagnosis.py. exercises.json carries the
+// stored values of the known mistakes and mutants and of each declared term alone.
+import { formatG } from "./header.js";
+
+const CONSTANTS = [
+  [Math.PI, "π", "a factor 1/π is missing"],
+  [1 / Math.PI, "1/π", "there is a 1/π too many"],
+  [2, "2", "a constant factor is off (2)"],
+  [4, "4", "a constant factor is off (4, as in 4·N·L·N·V)"],
+  [0.5, "1/2", "a constant factor is off (1/2)"],
+  [0.25, "1/4", "a constant factor is off (1/4, as in 4·N·L·N·V)"],
+];
+const CHANNELS = ["red", "green", "blue"];
+const MATCH_SHARE = 0.98;
+const GRAZING = 65;
+const LUMA_DEFAULT = [0.2126, 0.7152, 0.0722];
+
+/** Python's format(x, ".3g") / ".2g". */
+function g(x, digits) {
+  if (!Number.isFinite(x)) return String(x);
+  if (x === 0) return "0";
+  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
+  if (exponent < -4 || exponent >= digits) {
+    const [mant, exp] = x.toExponential(digits - 1).split("e");
+    const m = mant.includes(".") ? mant.replace(/0+$/, "").replace(/\.$/, "") : mant;
+    const e = Number(exp);
+    return `${m}e${e < 0 ? "-" : "+"}${String(Math.abs(e)).padStart(2, "0")}`;
+  }
+  const text = x.toFixed(Math.max(digits - 1 - exponent, 0));
+  return text.includes(".") ? text.replace(/0+$/, "").replace(/\.$/, "") : text;
+}
+
+// -- rows of (n, 3) values, as flat Float32/Float64 arrays with a stride -----------------
+/** Rows (n x 3 numbers) from a flat array of `stride` numbers per row. */
+export function rows(flat, n, stride = 3) {
+  const out = [];
+  for (let i = 0; i < n; i++) out.push([flat[stride * i], flat[stride * i + 1], flat[stride * i + 2]]);
+  return out;
+}
+
+/** diagnosis.within: rows where got is within slack x the tolerance of want. */
+export function within(check, got, want, slack = 2) {
+  return got.map((row, i) => row.every((x, c) => {
+    const w = want[i][c];
+    const tol = slack * (check.atol + check.rtol * Math.abs(w));
+    return Math.abs(x - w) <= tol || x === w || (Number.isNaN(x) && Number.isNaN(w));
+  }));
+}
+
+const mean = (bools) => bools.reduce((s, b) => s + (b ? 1 : 0), 0) / Math.max(bools.length, 1);
+
+export function same(check, got, want) {
+  return mean(within(check, got, want)) >= MATCH_SHARE;
+}
+
+/** diagnosis.nearest: the candidate the student agrees with nearly everywhere. */
+export function nearest(check, got, candidates, wrong) {
+  let best = null;
+  let bestShare = MATCH_SHARE;
+  const anyWrong = wrong.some(Boolean);
+  for (const [key, values] of Object.entries(candidates)) {
+    if (values.length !== got.length) continue;
+    const agree = within(check, got, values);
+    if (anyWrong) {
+      const onWrong = agree.filter((_, i) => wrong[i]);
+      if (mean(onWrong) < 0.9) continue;
+    }
+    const share = mean(agree);
+    if (share >= bestShare && (best === null || share > bestShare)) {
+      best = key;
+      bestShare = share;
+    }
+  }
+  return best;
+}
+
+function median(values) {
+  const s = [...values].sort((a, b) => a - b);
+  const n = s.length;
+  if (!n) return NaN;
+  return n % 2 ? s[(n - 1) / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+}
+
+/** numpy's percentile (linear interpolation). */
+function percentile(values, q) {
+  const s = [...values].sort((a, b) => a - b);
+  if (!s.length) return NaN;
+  const pos = ((s.length - 1) * q) / 100;
+  const lo = Math.floor(pos);
+  const hi = Math.min(lo + 1, s.length - 1);
+  return s[lo] + (s[hi] - s[lo]) * (pos - lo);
+}
+
+function spread(ratio) {
+  const med = median(ratio);
+  if (!Number.isFinite(med) || med <= 0) return [med, Infinity];
+  return [med, percentile(ratio.map((r) => Math.abs(r / med - 1)), 90)];
+}
+
+function factorName(value) {
+  for (const [constant, name, cause] of CONSTANTS) if (Math.abs(value / constant - 1) < 0.02) return [name, cause];
+  return null;
+}
+
+function ratioPhrase(value) {
+  const named = factorName(value);
+  if (named && value > 1) return `every value is ${named[0]} times too large — ${named[1]}`;
+  const inverse = factorName(1 / value);
+  if (inverse && value < 1) {
+    return `every value is ${inverse[0]} times too small — ${named ? named[1] : ""}`.replace(/[ —]+$/, "");
+  }
+  const word = value > 1 ? "large" : "small";
+  const times = value > 1 ? value : 1 / value;
+  return `every value is ${g(times, 3)} times too ${word}: a constant factor is off`;
+}
+
+const cosDeg = (d) => Math.cos((d * Math.PI) / 180);
+
+/** diagnosis.shape: the pattern of the error in a few words, or "". */
+export function shape(check, angles, expected, got) {
+  const wrong = within(check, got, expected, 1).map((ok) => !ok);
+  if (!wrong.some(Boolean)) return "";
+  if (!got.every((row) => row.every(Number.isFinite))) {
+    return "some values are NaN or infinite — a division by zero or the pow/sqrt of a " +
+      "negative number; guard them with max(..., EPS)";
+  }
+  const negative = got.map((row) => row.some((x) => x < 0));
+  const nNegative = negative.filter(Boolean).length;
+  if (nNegative) {
+    const atZero = expected.every((row, i) => !negative[i] || row.every((x) => x <= 0));
+    return `${nNegative} values are negative ${atZero ? "where the solution is 0" : "in places"} — a dot product is not ` +
+      "clamped (max(..., 0.0)) or the below-the-surface test is missing";
+  }
+  const zero = expected.map((row) => row.every((x) => x <= 0));
+  if (wrong.every((w, i) => !w || zero[i])) {
+    return "the values are wrong only where the solution is 0 (light or view below the " +
+      "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0";
+  }
+  return ratioShape(check, angles, expected, got) || oneChannel(check, expected, got, wrong) ||
+    grazing(angles, wrong, zero);
+}
+
+function std(values) {
+  const m = values.reduce((s, x) => s + x, 0) / values.length;
+  return Math.sqrt(values.reduce((s, x) => s + (x - m) * (x - m), 0) / values.length);
+}
+
+function ratioShape(check, angles, expected, got) {
+  const floor = 20 * check.atol;
+  const use = expected.map((row, i) => row.every((e, c) => e > floor && got[i][c] > 0));
+  const count = use.filter(Boolean).length;
+  if (count < Math.max(8, 0.3 * use.length)) return "";
+  const idx = use.map((u, i) => (u ? i : -1)).filter((i) => i >= 0);
+  const ratio = idx.map((i) => got[i].map((x, c) => x / expected[i][c]));
+  const flat = ratio.flat();
+  let [med, sp] = spread(flat);
+  if (sp < 0.01 && Math.abs(med - 1) > 3 * check.rtol) return ratioPhrase(med);
+  const cosI = idx.map((i) => cosDeg(angles[i][0]));
+  const cosO = idx.map((i) => cosDeg(angles[i][2]));
+  const factors = [
+    [cosI, "an extra factor cos θi (N·L) — the renderer multiplies by N·L itself"],
+    [cosO, "an extra factor cos θo (N·V)"],
+    [cosI.map((c) => 1 / c), "divided by cos θi (N·L) once too often"],
+    [cosO.map((c) => 1 / c), "divided by cos θo (N·V) once too often"],
+    [cosI.map((c, k) => Math.sqrt(c * cosO[k])), "an extra factor √(cos θi cos θo)"],
+    [cosI.map((c, k) => 1 / Math.sqrt(c * cosO[k])), "divided by √(cos θi cos θo) once too often"],
+  ];
+  for (const [factor, words] of factors) {
+    if (std(factor) < 0.05) continue;
+    [med, sp] = spread(ratio.flatMap((row, k) => row.map((r) => r / factor[k])));
+    if (sp < 0.01) {
+      const scale = Math.abs(med - 1) < 0.02 ? "" : ` (and a constant factor ${g(med, 3)})`;
+      return `the values are off by ${words}${scale}`;
+    }
+  }
+  return "";
+}
+
+function ptp(row) {
+  return Math.max(...row) - Math.min(...row);
+}
+
+function oneChannel(check, expected, got, wrong) {
+  const coloured = expected.map((row) => ptp(row) > 0.05 * Math.max(...row) + check.atol);
+  const grey = got.map((row) => ptp(row) <= 1e-6 * (1 + Math.max(...row.map(Math.abs))));
+  const wrongColoured = wrong.map((w, i) => w && coloured[i]);
+  if (wrongColoured.some(Boolean) && wrongColoured.every((w, i) => !w || grey[i]) && mean(grey) > 0.9) {
+    return "the result is grey where the solution is coloured — a float is used where a " +
+      "colour (vec3) belongs, e.g. one channel of a colour parameter";
+  }
+  const channels = [0, 1, 2].map((c) => got.some((row, i) =>
+    Math.abs(row[c] - expected[i][c]) > check.atol + check.rtol * Math.abs(expected[i][c])));
+  if (channels.filter(Boolean).length === 1) return `only the ${CHANNELS[channels.indexOf(true)]} channel is wrong`;
+  return "";
+}
+
+function grazing(angles, wrong, zero) {
+  const steep = angles.map((a) => Math.max(a[0], a[2]) > GRAZING);
+  const elsewhere = steep.map((s, i) => !s && !zero[i]);
+  const nElsewhere = elsewhere.filter(Boolean).length;
+  if (nElsewhere >= 8 && !wrong.some((w, i) => w && elsewhere[i]) && wrong.some((w, i) => w && steep[i])) {
+    return `the values are right except near grazing (θ above ${GRAZING}°) — check ` +
+      "the terms that matter there: Fresnel, G and the N·L·N·V denominator";
+  }
+  return "";
+}
+
+function halfWidth(theta, values) {
+  const floor = Math.min(...values);
+  const half = floor + 0.5 * (Math.max(...values) - floor);
+  const above = values.map((v, i) => (v >= half ? i : -1)).filter((i) => i >= 0);
+  if (above.length < 2 || above.length === values.length) return 0;
+  return theta[above[above.length - 1]] - theta[above[0]] || 1;
+}
+
+const argmax = (values) => values.reduce((best, v, i) => (v > values[best] ? i : best), 0);
+
+/** diagnosis.lobe: the polar curve's peak in the wrong place, or a lobe too wide/narrow. */
+export function lobe(check, theta, expected, got, params) {
+  const side = theta.map((t) => t >= 0);
+  const e = expected.filter((_, i) => side[i]);
+  const gv = got.filter((_, i) => side[i]);
+  const t = theta.filter((_, i) => side[i]);
+  if (!gv.every(Number.isFinite) || Math.max(...e) <= 0 || Math.max(...gv) <= 0) return "";
+  const ePeak = t[argmax(e)];
+  const gPeak = t[argmax(gv)];
+  const peaked = Math.max(...gv) > 1.5 * Math.min(gv[0], gv[gv.length - 1]) + check.atol &&
+    Math.max(...e) > 1.5 * Math.min(e[0], e[e.length - 1]);
+  if (!peaked) return "";
+  if (Math.abs(ePeak - gPeak) >= 3 && gPeak > 0 && gPeak < Math.max(...t)) {
+    return `the lobe peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}° — check the ` +
+      "reflected direction (or the half vector) and which vectors enter it";
+  }
+  const eWidth = halfWidth(t, e);
+  const gWidth = halfWidth(t, gv);
+  if (!(eWidth && gWidth) || Math.abs(gWidth / eWidth - 1) < 0.2) return "";
+  const words = gWidth > eWidth ? "too wide" : "too narrow";
+  let text = `the lobe is ${g(Math.max(gWidth, eWidth) / Math.min(gWidth, eWidth), 2)} times ${words}`;
+  if ("ke" in params) {
+    const fit = Math.log(0.5) / Math.log(Math.cos((Math.min(gWidth / 2, 89) * Math.PI) / 180));
+    text += ` — it behaves like an exponent of about ${g(fit, 3)} instead of ${formatG(params.ke)}`;
+  } else if ("m" in params) {
+    text += ` — as if the roughness were about ${g((params.m * gWidth) / eWidth, 2)}`;
+    text += ` instead of ${formatG(params.m)}`;
+  }
+  return text;
+}
+
+export function termsSentence(wrong, right, detail) {
+  let text = `the ${wrong.join(" and ")} term${wrong.length > 1 ? "s are" : " is"} wrong`;
+  if (right.length) text += ` (the ${right.join(" and ")} term${right.length > 1 ? "s are" : " is"} right)`;
+  return text + (detail ? `: ${detail}` : "");
+}
+
+export function sentence(text) {
+  text = text.trim().replace(/\.+$/, "");
+  return text ? `Likely: ${text}.` : "";
+}
+
+// -- stored references: inflated once per exercise ---------------------------------------
+async function inflate(base64, Type) {
+  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate"));
+  return new Type(await new Response(stream).arrayBuffer());
+}
+
+/** Inflates every check's stored candidates and term values (check.stored). */
+export async function prepare(exercise) {
+  for (const check of exercise.checks) {
+    if (check.stored || !check.diagnosis) continue;
+    const image = check.kind === "sphere";
+    const stored = { candidates: {}, terms: {} };
+    for (const [key, text] of Object.entries(check.diagnosis.candidates)) {
+      const data = await inflate(text, image ? Uint8Array : Float32Array);
+      stored.candidates[key] = image ? data : rows(data, check.count);
+    }
+    for (const [name, text] of Object.entries(check.diagnosis.terms)) {
+      stored.terms[name] = rows(await inflate(text, Float32Array), check.count);
+    }
+    check.stored = stored;
+  }
+}
+
+function sphereShare(check, image8, other8) {
+  let covered = 0;
+  let over = 0;
+  for (let i = 0; i < image8.length / 4; i++) {
+    if (image8[4 * i + 3] <= 127) continue;
+    covered++;
+    let diff = 0;
+    for (let c = 0; c < 3; c++) diff = Math.max(diff, Math.abs(image8[4 * i + c] - other8[4 * i + c]));
+    if (diff > check.threshold) over++;
+  }
+  return covered ? over / covered : 0;
+}
+
+function nearestImage(check, image8, candidates) {
+  let best = null;
+  let bestShare = 1;
+  for (const [key, other] of Object.entries(candidates)) {
+    if (other.length !== image8.length) continue;
+    const share = sphereShare(check, other, image8);
+    if (share <= Math.max(check.max_fraction, 0.002) && share < bestShare) {
+      best = key;
+      bestShare = share;
+    }
+  }
+  return best;
+}
+
+/**
+ * explain.Explainer.explain in practice mode. `got`: the student's values (rows of 3) or,
+ * for a sphere, the tone-mapped uint8 RGBA image; `evaluate(params, angles)` renders the
+ * student's model at other parameters or direction pairs (rows of 4 degrees) -> rows.
+ */
+export function explain(exercise, check, expected, got, angles, evaluate, luma = LUMA_DEFAULT) {
+  const hints = exercise.hints || {};
+  const stored = check.stored || { candidates: {}, terms: {} };
+  const candidates = Object.fromEntries(Object.entries(stored.candidates).filter(([k]) => k in hints));
+  if (check.kind === "sphere") {
+    const key = nearestImage(check, got, candidates);
+    return key ? sentence(hints[key]) : "";
+  }
+  const wrong = within(check, got, expected, 1).map((ok) => !ok);
+  const key = nearest(check, got, candidates, wrong);
+  if (key) return sentence(hints[key]);
+  let text = terms(exercise, check, angles, stored, evaluate);
+  text ||= shape(check, angles, expected, got);
+  text ||= swaps(check, angles, expected, evaluate);
+  if (!text && check.kind === "polar") text = polarLobe(check, expected, got, check.params, luma);
+  return sentence(text);
+}
+
+function terms(exercise, check, angles, stored, evaluate) {
+  const declared = Object.entries(exercise.terms || {});
+  if (declared.length < 2) return "";
+  const wrong = [];
+  const right = [];
+  let detail = "";
+  for (const [name, overrides] of declared) {
+    const want = stored.terms[name];
+    if (!want) return "";
+    const params = { ...check.params, ...overrides };
+    const mine = evaluate(params, null);
+    if (within(check, mine, want, 1).every(Boolean)) right.push(name);
+    else {
+      wrong.push(name);
+      const termCheck = { ...check, params };
+      detail ||= shape(termCheck, angles, want, mine);
+      if (!detail && check.kind === "polar") detail = polarLobe(termCheck, want, mine, params);
+    }
+  }
+  if (!wrong.length || !right.length) return "";
+  return termsSentence(wrong, right, wrong.length === 1 ? detail : "");
+}
+
+function swaps(check, angles, expected, evaluate) {
+  const got = evaluate(check.params, angles);
+  if (same(check, got, expected)) return "";
+  const swapped = evaluate(check.params, angles.map((a) => [a[2], a[3], a[0], a[1]]));
+  if (same(check, swapped, expected) && !same(check, swapped, got)) {
+    return "your BRDF(L, V) gives the solution's BRDF(V, L) — L and V are swapped " +
+      "somewhere (the solution is not symmetric in them)";
+  }
+  const wrap = (d) => (((90 - d) % 360) + 360) % 360;
+  const mirrored = angles.map((a) => [a[0], wrap(a[1]), a[2], wrap(a[3])]);
+  const axes = evaluate(check.params, mirrored);
+  if (same(check, axes, expected) && !same(check, axes, got)) {
+    return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y";
+  }
+  return "";
+}
+
+function polarLobe(check, expected, got, params, luma = LUMA_DEFAULT) {
+  const lum = (row) => row.reduce((s, x, c) => s + (Number.isNaN(x) ? 0 : x === Infinity ? 1.7976931348623157e308 : x) * luma[c], 0);
+  return lobe(check, check.lobe_theta, expected.map(lum), got.map(lum), params);
+}
