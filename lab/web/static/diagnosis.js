@@ -15,7 +15,6 @@ const CONSTANTS = [
 const CHANNELS = ["red", "green", "blue"];
 const MATCH_SHARE = 0.98;
 const GRAZING = 65;
-const LUMA_DEFAULT = [0.2126, 0.7152, 0.0722];
 
 /** Python's format(x, ".3g") / ".2g". */
 function g(x, digits) {
@@ -313,9 +312,10 @@ function nearestImage(check, image8, candidates) {
 /**
  * explain.Explainer.explain in practice mode. `got`: the student's values (rows of 3) or,
  * for a sphere, the tone-mapped uint8 RGBA image; `evaluate(params, angles)` renders the
- * student's model at other parameters or direction pairs (rows of 4 degrees) -> rows.
+ * student's model at other parameters or direction pairs (rows of 4 degrees) -> rows;
+ * `luma`: the lab's luminance weights (the manifest's LUMA).
  */
-export function explain(exercise, check, expected, got, angles, evaluate, luma = LUMA_DEFAULT) {
+export function explain(exercise, check, expected, got, angles, evaluate, luma) {
   const hints = exercise.hints || {};
   const stored = check.stored || { candidates: {}, terms: {} };
   const candidates = Object.fromEntries(Object.entries(stored.candidates).filter(([k]) => k in hints));
@@ -326,14 +326,14 @@ export function explain(exercise, check, expected, got, angles, evaluate, luma =
   const wrong = within(check, got, expected, 1).map((ok) => !ok);
   const key = nearest(check, got, candidates, wrong);
   if (key) return sentence(hints[key]);
-  let text = terms(exercise, check, angles, stored, evaluate);
+  let text = terms(exercise, check, angles, stored, evaluate, luma);
   text ||= shape(check, angles, expected, got);
   text ||= swaps(check, angles, expected, evaluate);
   if (!text && check.kind === "polar") text = polarLobe(check, expected, got, check.params, luma);
   return sentence(text);
 }
 
-function terms(exercise, check, angles, stored, evaluate) {
+function terms(exercise, check, angles, stored, evaluate, luma) {
   const declared = Object.entries(exercise.terms || {});
   if (declared.length < 2) return "";
   const wrong = [];
@@ -349,7 +349,7 @@ function terms(exercise, check, angles, stored, evaluate) {
       wrong.push(name);
       const termCheck = { ...check, params };
       detail ||= shape(termCheck, angles, want, mine);
-      if (!detail && check.kind === "polar") detail = polarLobe(termCheck, want, mine, params);
+      if (!detail && check.kind === "polar") detail = polarLobe(termCheck, want, mine, params, luma);
     }
   }
   if (!wrong.length || !right.length) return "";
@@ -373,7 +373,7 @@ function swaps(check, angles, expected, evaluate) {
   return "";
 }
 
-function polarLobe(check, expected, got, params, luma = LUMA_DEFAULT) {
+function polarLobe(check, expected, got, params, luma) {
   const lum = (row) => row.reduce((s, x, c) => s + (Number.isNaN(x) ? 0 : x === Infinity ? 1.7976931348623157e308 : x) * luma[c], 0);
   return lobe(check, check.lobe_theta, expected.map(lum), got.map(lum), params);
 }
