@@ -52,6 +52,16 @@ def furnace(
     model = as_model(model)
     env = Environment(np.ones((16, 32, 3), np.float32), "furnace")
     image = render(model, values, env, strategy, samples, size, renderer=renderer)
+    return against_albedo(image, model, values, renderer)
+
+
+def against_albedo(
+    image: np.ndarray, model: Model | str, values: dict | None, renderer: IBLRenderer
+) -> FurnaceResult:
+    """Compare a furnace render (size, size, 4), row 0 at the top (any renderer's: the
+    web lab's too), with the albedo view, bin by bin of the view angle."""
+    model = as_model(model)
+    size = image.shape[0]
     theta, phi, mask = local_view(size)
     thetas = np.linspace(0.0, THETA_MAX, 41)
     isotropic = "isotropic" in model.properties

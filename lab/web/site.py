@@ -65,7 +65,25 @@ def manifest() -> dict:
         "exercises": exercise_list(),
         # The measured model's file: a table opened in the page is drawn by it.
         "measured_model": MEASURED_MODEL.read_text(encoding="utf-8"),
+        "environments": environments(),
     }
+
+
+def environments() -> dict:
+    """The IBL view's procedural maps (lab/ibl/environments.py), served as
+    environments/NAME.f32: float32 RGB, row 0 the zenith."""
+    from lab.ibl.environments import DEFAULT_SIZE, PROCEDURAL
+
+    return {"names": list(PROCEDURAL), "width": DEFAULT_SIZE[0], "height": DEFAULT_SIZE[1]}
+
+
+def environment_bytes(name: str) -> bytes | None:
+    """One procedural map as the page loads it, or None for an unknown name."""
+    from lab.ibl.environments import DEFAULT_SIZE, PROCEDURAL, procedural
+
+    if name not in PROCEDURAL:
+        return None
+    return procedural(name, DEFAULT_SIZE).astype("<f4").tobytes()
 
 
 def exercise_list() -> list[dict]:
@@ -92,6 +110,10 @@ def export(outdir: str | Path) -> Path:
     shutil.copytree(SHADER_DIR, target, ignore=shutil.ignore_patterns("__pycache__"))
     (outdir / "manifest.json").write_text(json.dumps(manifest(), indent=1) + "\n", encoding="utf-8")
     (outdir / "exercises.json").write_text(json.dumps(exercises_json()), encoding="utf-8")
+    maps = outdir / "environments"
+    maps.mkdir(exist_ok=True)
+    for name in environments()["names"]:
+        (maps / f"{name}.f32").write_bytes(environment_bytes(name))
     (outdir / ".nojekyll").write_text("", encoding="utf-8")  # GitHub Pages: serve files as-is
     return outdir / "index.html"
 
@@ -126,7 +148,11 @@ class LabHandler(http.server.SimpleHTTPRequestHandler):
 
     def do_GET(self) -> None:  # noqa: N802 (http.server's naming)
         made = {"/manifest.json": manifest, "/exercises.json": exercises_json}
-        page = made.get(self.path.split("?", 1)[0])
+        clean = self.path.split("?", 1)[0]
+        if clean.startswith("/environments/") and clean.endswith(".f32"):
+            self.send_bytes(environment_bytes(clean[len("/environments/") : -len(".f32")]))
+            return
+        page = made.get(clean)
         if page is not None:
             body = json.dumps(page()).encode()
             self.send_response(200)
@@ -136,6 +162,16 @@ class LabHandler(http.server.SimpleHTTPRequestHandler):
             self.wfile.write(body)
             return
         super().do_GET()
+
+    def send_bytes(self, body: bytes | None) -> None:
+        if body is None:
+            self.send_error(404, "no such environment")
+            return
+        self.send_response(200)
+        self.send_header("Content-Type", "application/octet-stream")
+        self.send_header("Content-Length", str(len(body)))
+        self.end_headers()
+        self.wfile.write(body)
 
     def end_headers(self) -> None:
         self.send_header("Cache-Control", "no-store")

@@ -5,11 +5,14 @@ import { direction, planeOfIncidence } from "./geometry.js";
 import { SLIDER_STEPS, parseRgb, parseValue, sliderToValue, valueToSlider } from "./values.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
+import { IBL_TITLE, IblView } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 import { openModelFile } from "./measured.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
+VIEWS.ibl = IblView; // its own module (ibl.js)
+VIEW_TITLES.ibl = IBL_TITLE;
 const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
 const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
@@ -1309,6 +1312,7 @@ async function load() {
   const manifest = JSON.parse(await fetchText("manifest.json"));
   Object.assign(C, manifest.constants);
   lab.presets = manifest.presets || [];
+  lab.environments = manifest.environments; // the IBL view's maps: names and size
   lab.exerciseList = manifest.exercises || [];
   lab.measuredCode = manifest.measured_model; // lab/measured/measured.glsl
   // The texts come with the manifest (one request); a manifest without them, file by file.

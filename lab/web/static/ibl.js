@@ -1,0 +1,360 @@
+// The IBL view of the web lab: the lit sphere under an environment map, by progressive
+// Monte Carlo integration of the reflection equation, from the desktop's own template
+// (shaders/views/ibl.glsl) with the same samplers (shaders/samplers/, terms/sampling.glsl)
+// and the same procedural environments (lab/ibl/environments.py, served as float data).
+// Passes of samples add up in a float target (additive blending); the view shows the mean
+// and the sample count, and starts again when anything it depends on changes.
+import { toImage, topFirst } from "./views.js";
+
+// As lab/ibl/integrator.py STRATEGIES (the index is the shader's u_strategy).
+export const STRATEGIES = ["uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power"];
+export const STRATEGY_TITLES = {
+  uniform: "uniform hemisphere",
+  cosine: "cosine-weighted",
+  environment: "environment (CDF over the map)",
+  brdf: "BRDF importance",
+  mis_balance: "MIS, balance heuristic",
+  mis_power: "MIS, power heuristic",
+};
+const NO_SAMPLER = `const bool HAS_SAMPLER = false;
+vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
+float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }`;
+const ENV_UNIT = 8; // texture units 8..11 hold the environment, as on the desktop
+export const IBL_SIZE = 256; // render size (the desktop's), at most the page's sphere size
+export const MAX_SAMPLES = 1024; // per pixel: the render stops there
+const PASS_MS = 30; // aim of one pass, so that the page stays responsive
+
+// Shared by every panel: the environment, the strategy and the rotation (degrees).
+export const IBL = { environment: "sky", strategy: "mis_power", rotation: 0 };
+
+/** The model's BRDF sampler file text, or null (opened files, exercises, models without
+ * one), as lab/ibl/integrator.py sampler_path decides. */
+export function samplerText(model, files) {
+  const text = files[`samplers/${model.name}.glsl`];
+  return text !== undefined && model.path === `shaders/brdfs/${model.name}.glsl` ? text : null;
+}
+
+/** What the view says when the strategy needs a sampler the model lacks (integrator.fallback). */
+export function fallback(model, strategy, files) {
+  if (!["brdf", "mis_balance", "mis_power"].includes(strategy) || samplerText(model, files) !== null) return null;
+  if (model.delta) return null;
+  const used = strategy === "brdf" ? "cosine-weighted" : "MIS of cosine-weighted and environment";
+  return `${model.name} has no BRDF sampler: ${used} sampling instead`;
+}
+
+/** Puts the sampling terms and the model's sampler between the model and the template. */
+function withSampler(files) {
+  return (source, model) => {
+    const marker = source.lines.lastIndexOf("#define main lab_view_main");
+    const start = marker >= 0 ? marker : source.origins.findIndex(([f]) => f === "shaders/views/ibl.glsl");
+    const sampler = samplerText(model, files);
+    const lines = [];
+    const origins = [];
+    const add = (text, label) => text.replace(/\r\n?/g, "\n").replace(/\n$/, "").split("\n").forEach((line, k) => {
+      lines.push(line);
+      origins.push([label, k + 1]);
+    });
+    add(files["terms/sampling.glsl"], "shaders/terms/sampling.glsl");
+    add(sampler ?? NO_SAMPLER, sampler === null ? "<no sampler>" : `shaders/samplers/${model.name}.glsl`);
+    source.lines.splice(start, 0, ...lines);
+    source.origins.splice(start, 0, ...origins);
+  };
+}
+
+/** Importance sampling by luminance times sin θ (environments.sampling_tables): the
+ * density over (u, v), the CDF over rows and one CDF over the columns of each row. */
+export function samplingTables(image, width, height, luma) {
+  const weight = new Float64Array(width * height);
+  let sum = 0;
+  for (let j = 0; j < height; j++) {
+    const s = Math.sin(((j + 0.5) / height) * Math.PI);
+    for (let i = 0; i < width; i++) {
+      const k = j * width + i;
+      const y = luma[0] * image[3 * k] + luma[1] * image[3 * k + 1] + luma[2] * image[3 * k + 2];
+      weight[k] = Math.max(y, 0) * s;
+      sum += weight[k];
+    }
+  }
+  const sinRow = (j) => Math.sin(((j + 0.5) / height) * Math.PI);
+  if (sum <= 0) for (let k = 0; k < weight.length; k++) weight[k] = sinRow(Math.floor(k / width));
+  let total = 0;
+  for (let k = 0; k < weight.length; k++) total += weight[k];
+  const floor = (1e-4 * total) / weight.length; // keeps every pixel reachable
+  for (let k = 0; k < weight.length; k++) weight[k] += floor * sinRow(Math.floor(k / width));
+  total = 0;
+  const rows = new Float64Array(height);
+  for (let j = 0; j < height; j++) {
+    for (let i = 0; i < width; i++) rows[j] += weight[j * width + i];
+    total += rows[j];
+  }
+  const marginal = new Float32Array(height + 1);
+  let run = 0;
+  for (let j = 0; j < height; j++) marginal[j + 1] = (run += rows[j]) / total;
+  marginal[height] = 1;
+  const conditional = new Float32Array((width + 1) * height);
+  const density = new Float32Array(width * height);
+  for (let j = 0; j < height; j++) {
+    let acc = 0;
+    const last = Math.max(rows[j], 1e-300);
+    for (let i = 0; i < width; i++) {
+      acc += weight[j * width + i];
+      conditional[j * (width + 1) + i + 1] = acc / last;
+      density[j * width + i] = (weight[j * width + i] / total) * width * height;
+    }
+    conditional[j * (width + 1) + width] = 1;
+  }
+  return { density, marginal, conditional };
+}
+
+const maps = new Map(); // environment name -> Promise of {image, width, height, tables}
+
+/** The environment's radiance (float32 RGB, row 0 the zenith) and its sampling tables. */
+export function loadEnvironment(name, info, luma) {
+  if (!maps.has(name)) {
+    maps.set(name, fetch(`environments/${name}.f32`).then(async (response) => {
+      if (!response.ok) throw new Error(`cannot load environments/${name}.f32 (HTTP ${response.status})`);
+      const image = new Float32Array(await response.arrayBuffer());
+      const { width, height } = info;
+      if (image.length !== width * height * 3) throw new Error(`environments/${name}.f32 is not ${width}x${height} RGB floats`);
+      return { image, width, height, tables: samplingTables(image, width, height, luma) };
+    }));
+  }
+  return maps.get(name);
+}
+
+function texture(gl, format, width, height, data) {
+  const t = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, t);
+  const external = format === gl.RGB32F ? gl.RGB : gl.RED;
+  gl.texImage2D(gl.TEXTURE_2D, 0, format, width, height, 0, external, gl.FLOAT, data);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+  return t;
+}
+
+/** The IBL view of one panel. */
+export class IblView {
+  constructor(panel, env) {
+    this.panel = panel;
+    this.env = env;
+    const { el, lab } = env;
+    this.size = Math.min(lab.size, IBL_SIZE);
+    this.canvas = el("canvas", { class: "ibl", width: this.size, height: this.size });
+    this.root = env.viewBox(this.canvas, "ibl", () => `${panel.name}_ibl_${IBL.environment}.png`);
+    this.samples = 0;
+    this.passes = 0;
+    this.key = "";
+    this.textures = new Map(); // environment name -> its four textures on this context
+    this.status = el("div", { class: "view-note ibl-status", role: "status" });
+    const select = (options, field, title) => {
+      const box = el("select", { title }, ...Object.entries(options).map(([v, t]) => el("option", { value: v }, t)));
+      box.value = IBL[field];
+      box.addEventListener("change", () => {
+        IBL[field] = box.value;
+        env.scheduleRender();
+      });
+      return box;
+    };
+    const names = lab.environments || {};
+    this.envBox = select(Object.fromEntries((names.names || []).map((n) => [n, n.replace("_", " ")])), "environment",
+      "the environment: procedural maps the lab makes itself (lab/ibl/environments.py)");
+    this.strategyBox = select(STRATEGY_TITLES, "strategy", "how each sample's direction is drawn");
+    this.rotation = el("input", { type: "range", min: 0, max: 360, step: 5, value: IBL.rotation,
+      title: "turn the environment about the vertical axis (degrees)" });
+    this.rotation.addEventListener("input", () => {
+      IBL.rotation = Number(this.rotation.value);
+      env.scheduleRender();
+    });
+    this.root.append(el("div", { class: "ibl-controls" }, this.envBox, this.strategyBox,
+      el("label", { title: this.rotation.title }, "turn ", this.rotation)), this.status);
+    this.tick = this.tick.bind(this);
+  }
+
+  /** A setting changed somewhere on the page: start again if it touches this render. */
+  render() {
+    const { lab } = this.env;
+    this.envBox.value = IBL.environment;
+    this.strategyBox.value = IBL.strategy;
+    this.rotation.value = IBL.rotation;
+    const panel = this.panel;
+    const key = JSON.stringify([panel.name, panel.model?.code, panel.values, IBL, this.size, lab.lights.length]);
+    if (key === this.key) {
+      this.draw(); // the exposure may have changed
+      return;
+    }
+    this.key = key;
+    this.restart();
+  }
+
+  restart() {
+    const gl = this.panel.gl;
+    this.samples = 0;
+    this.passes = 0;
+    this.error = "";
+    if (!this.target) this.makeTarget(gl);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
+    gl.clearColor(0, 0, 0, 0);
+    gl.clear(gl.COLOR_BUFFER_BIT);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    this.spp = 1;
+    this.ready = this.environment(IBL.environment).then(() => {
+      this.schedule();
+    }, (err) => {
+      this.error = err.message;
+      this.showStatus();
+    });
+    this.showStatus();
+  }
+
+  makeTarget(gl) {
+    if (!gl.getExtension("EXT_float_blend")) throw new Error("this browser cannot add up float images (EXT_float_blend)");
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, this.size, this.size, 0, gl.RGBA, gl.FLOAT, null);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const fbo = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    this.target = { texture: t, fbo };
+  }
+
+  /** This context's textures of the environment (loaded once per page). */
+  async environment(name) {
+    if (!this.textures.has(name)) {
+      const { C, lab } = this.env;
+      const map = await loadEnvironment(name, lab.environments, C.LUMA);
+      const gl = this.panel.gl;
+      if (!gl) return null;
+      const { width: w, height: h, tables } = map;
+      this.textures.set(name, {
+        list: [texture(gl, gl.RGB32F, w, h, map.image), texture(gl, gl.R32F, w, h, tables.density),
+          texture(gl, gl.R32F, h + 1, 1, tables.marginal), texture(gl, gl.R32F, w + 1, h, tables.conditional)],
+        size: [w, h],
+      });
+    }
+    return this.textures.get(name);
+  }
+
+  schedule() {
+    if (!this.pending && this.samples < MAX_SAMPLES) this.pending = requestAnimationFrame(this.tick);
+  }
+
+  tick() {
+    this.pending = 0;
+    if (!this.panel.gl || !this.root.isConnected) return;
+    if (this.offscreen) {
+      this.stale = true; // resumes when scrolled into sight (lab.js)
+      return;
+    }
+    const start = performance.now();
+    try {
+      this.pass(Math.min(this.spp, MAX_SAMPLES - this.samples));
+    } catch (err) {
+      // The panel shows a compile error of the model itself; this names the view.
+      this.error = `the IBL view cannot run: ${err.message.split("\n")[0]}`;
+      this.showStatus();
+      return;
+    }
+    this.draw();
+    // Samples per pass follow the time a pass takes, so that the page keeps responding.
+    const ms = performance.now() - start;
+    this.spp = Math.max(1, Math.min(64, Math.round(this.spp * Math.min(2, PASS_MS / Math.max(ms, 1)))));
+    this.schedule();
+  }
+
+  /** One pass of `spp` samples per pixel, added to the target. */
+  pass(spp) {
+    const { lab } = this.env;
+    const gl = this.panel.gl;
+    const textures = this.textures.get(IBL.environment);
+    if (!textures || spp <= 0) return;
+    const view = STRATEGIES.indexOf(IBL.strategy);
+    const compiled = this.panel.program("ibl", `const int LIGHT_COUNT = ${lab.lights.length};`, withSampler(lab.files));
+    gl.useProgram(compiled.program);
+    gl.bindVertexArray(this.panel.vao);
+    this.panel.setParams(gl, compiled);
+    textures.list.forEach((t, k) => {
+      gl.activeTexture(gl.TEXTURE0 + ENV_UNIT + k);
+      gl.bindTexture(gl.TEXTURE_2D, t);
+    });
+    gl.activeTexture(gl.TEXTURE0);
+    const u = compiled.uniforms;
+    const set = (name, fn, ...v) => u[name] !== undefined && gl[fn](u[name], ...v);
+    ["u_env", "u_density", "u_marginal", "u_conditional"].forEach((name, k) => set(name, "uniform1i", ENV_UNIT + k));
+    set("u_env_size", "uniform2f", ...textures.size);
+    set("u_resolution", "uniform2f", this.size, this.size);
+    set("u_rotation", "uniform1f", (IBL.rotation * Math.PI) / 180);
+    set("u_strategy", "uniform1i", view);
+    set("u_spp", "uniform1i", spp);
+    set("u_frame", "uniform1i", this.passes);
+    set("u_seed", "uniform1i", 0);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
+    gl.viewport(0, 0, this.size, this.size);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.ONE, gl.ONE);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.disable(gl.BLEND);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    this.samples += spp;
+    this.passes++;
+  }
+
+  /** Runs passes until `samples` per pixel now (tests, benchmarks); resolves to the count. */
+  async converge(samples = MAX_SAMPLES, spp = 16) {
+    await this.ready;
+    cancelAnimationFrame(this.pending);
+    this.pending = 0;
+    while (this.samples < samples) this.pass(Math.min(spp, samples - this.samples));
+    this.stale = false;
+    this.draw();
+    return this.samples;
+  }
+
+  /** The running sums, read back (rows from the bottom). */
+  sums() {
+    const gl = this.panel.gl;
+    const out = new Float32Array(4 * this.size * this.size);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
+    gl.readPixels(0, 0, this.size, this.size, gl.RGBA, gl.FLOAT, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return out;
+  }
+
+  draw() {
+    this.showStatus();
+    if (!this.samples) return;
+    const { lab } = this.env;
+    const data = this.sums();
+    // The mean; the environment shows behind the sphere (alpha 0 there in the sums).
+    for (let i = 0; i < data.length; i += 4) {
+      for (let c = 0; c < 3; c++) data[i + c] /= this.samples;
+      data[i + 3] = 1;
+    }
+    this.canvas.getContext("2d").putImageData(toImage(data, this.size, this.size, lab.exposure), 0, 0);
+  }
+
+  showStatus() {
+    const model = this.panel.model;
+    const note = model ? fallback(model, IBL.strategy, this.env.lab.files) : null;
+    const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
+    const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}` +
+      (note ? ` · ${note}` : "");
+    this.status.textContent = text;
+    this.status.classList.toggle("bad", Boolean(this.error || note));
+  }
+
+  /** The running mean as the desktop's Progressive.image(): rows from the top, alpha 1 on
+   * the sphere and 0 behind it. */
+  read() {
+    const data = this.sums();
+    const n = this.samples || 1;
+    for (let i = 0; i < data.length; i++) data[i] /= n;
+    return { width: this.size, height: this.size, samples: this.samples, data: topFirst(data, this.size, this.size) };
+  }
+}
+
+export const IBL_TITLE = "IBL (Monte Carlo)";

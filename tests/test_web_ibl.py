@@ -1,0 +1,127 @@
+"""The page's IBL view (progressive Monte Carlo of the reflection equation in WebGL): the
+furnace render equals the albedo view, and the converged image agrees with the desktop's
+EGL render of the same template within the Monte Carlo noise."""
+
+from __future__ import annotations
+
+import base64
+
+import numpy as np
+import pytest
+
+from lab.constants import LUMA
+from lab.ibl.environments import DEFAULT_SIZE, procedural
+from lab.ibl.furnace import against_albedo
+from lab.ibl.integrator import Environment, IBLRenderer, render, sphere_normals
+from lab.web.browser import chromium_path
+
+pytestmark = pytest.mark.skipif(
+    chromium_path() is None, reason="Chromium is not installed (apt-get install chromium)"
+)
+
+SIZE = 64  # the page's sphere size: the IBL view renders at this size too
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    from lab.web.browser import chromium
+    from lab.web.site import export, serving
+
+    site = export(tmp_path_factory.mktemp("site")).parent
+    with serving(site) as url, chromium() as browser:
+        tab = browser.new_page(viewport={"width": 1400, "height": 900})
+        errors: list[str] = []
+        tab.on("console", lambda m: m.type == "error" and errors.append(m.text))
+        tab.on("pageerror", lambda e: errors.append(str(e)))
+        tab.goto(f"{url}index.html#model=ggx&size={SIZE}&views=ibl")
+        tab.evaluate("window.brdfLab.ready")
+        tab.errors = errors
+        yield tab
+
+
+@pytest.fixture(scope="module")
+def ibl(ctx):
+    return IBLRenderer(ctx)
+
+
+def web_ibl(page, model: str, values: dict, environment: str, strategy: str, samples: int):
+    """The page's IBL mean after `samples` per pixel: (SIZE, SIZE, 4), row 0 at the top."""
+    page.evaluate(
+        """async ([model, values, environment, strategy]) => {
+            const { IBL } = await import('./ibl.js');
+            Object.assign(IBL, { environment, strategy, rotation: 0 });
+            brdfLab.setModel(0, model, values);
+            brdfLab.panel(0).extra.ibl.restart();
+        }""",
+        [model, values, environment, strategy],
+    )
+    got = page.evaluate(f"brdfLab.panel(0).extra.ibl.converge({samples})")
+    assert got == samples
+    out = page.evaluate("brdfLab.readView(0, 'ibl')")
+    assert out["samples"] == samples
+    data = np.frombuffer(base64.b64decode(out["data"]), dtype=np.float32)
+    return data.reshape(out["height"], out["width"], 4)
+
+
+# Physically based models with an analytic sampler (their furnace render converges fast).
+FURNACE = [
+    ("ggx", {"alpha": 0.3}),
+    ("cook_torrance", {"m": 0.3}),
+    ("lambert", {}),
+    ("oren_nayar", {}),
+]
+
+
+@pytest.mark.parametrize("name,values", FURNACE)
+def test_furnace_render_equals_the_albedo(page, ibl, name, values):
+    """Under the white furnace the reflected radiance at each view angle is the directional
+    albedo (the desktop's albedo view, EGL), within 1%."""
+    image = web_ibl(page, name, values, "furnace", "brdf", 1024)
+    result = against_albedo(image, name, values, ibl)
+    assert result.max_relative_error < 0.01, (name, result.rendered, result.albedo)
+    assert not result.energy_gain
+    assert page.errors == []
+
+
+@pytest.mark.parametrize("strategy", ["cosine", "environment", "brdf", "mis_power"])
+def test_converged_image_agrees_with_the_desktop(page, ibl, strategy):
+    """GGX under the sky: the page's render and the EGL render (same template, seeds and
+    sample count) differ no more than two EGL renders with different seeds do (the
+    rasterizers' sin/cos differ, so their sample streams part ways: the Monte Carlo noise)."""
+    values = {"alpha": 0.3}
+    samples = 64
+    web = web_ibl(page, "ggx", values, "sky", strategy, samples)
+    env = Environment(procedural("sky", DEFAULT_SIZE), "sky")
+    desktop = render("ggx", values, env, strategy, samples, SIZE, renderer=ibl)
+    other = render("ggx", values, env, strategy, samples, SIZE, seed=1, renderer=ibl)
+    _, mask = sphere_normals(SIZE)
+    lum = lambda im: im[..., :3][mask] @ np.array(LUMA)  # noqa: E731
+    noise = np.sqrt(np.mean((lum(other) - lum(desktop)) ** 2))
+    error = np.sqrt(np.mean((lum(web) - lum(desktop)) ** 2))
+    assert noise > 0
+    assert error < 1.25 * noise, (strategy, error, noise)
+    # The means over the sphere agree within four standard errors of such a difference.
+    spread = np.std(lum(other) - lum(desktop)) / np.sqrt(mask.sum())
+    assert abs(lum(web).mean() - lum(desktop).mean()) < 4 * spread, (strategy, spread)
+    # The view's alpha: 1 on the sphere, 0 behind it, as Progressive.image().
+    assert np.allclose(web[..., 3][mask], 1.0) and np.allclose(web[..., 3][~mask], 0.0)
+
+
+def test_view_shows_the_count_and_restarts_when_a_slider_moves(page, output_dir):
+    web_ibl(page, "ggx", {"alpha": 0.3}, "sky", "mis_power", 32)
+    assert page.evaluate("brdfLab.panel(0).extra.ibl.status.textContent").startswith(
+        "32 samples per pixel"
+    )
+    restarted = page.evaluate(
+        "(() => { brdfLab.moveSlider(0, 'alpha', 300); return brdfLab.panel(0).extra.ibl.samples; })()"
+    )
+    assert restarted == 0
+    # It goes on by itself, pass after pass.
+    page.wait_for_function("brdfLab.panel(0).extra.ibl.samples >= 16")
+    page.locator("[data-view=ibl]").first.screenshot(path=output_dir / "web_ibl.png")
+    # A model without a sampler says what it uses instead.
+    page.evaluate("brdfLab.setModel(0, 'ward', {})")
+    page.evaluate("brdfLab.setModel(0, 'lommel_seeliger', {})")
+    status = page.evaluate("brdfLab.panel(0).extra.ibl.status.textContent")
+    assert "has no BRDF sampler: MIS of cosine-weighted and environment sampling" in status
+    assert page.errors == []
