@@ -113,7 +113,8 @@ def test_view_shows_the_count_and_restarts_when_a_slider_moves(page, output_dir)
         "32 samples per pixel"
     )
     restarted = page.evaluate(
-        "(() => { brdfLab.moveSlider(0, 'alpha', 300); return brdfLab.panel(0).extra.ibl.samples; })()"
+        "(() => { brdfLab.moveSlider(0, 'alpha', 300);"
+        " return brdfLab.panel(0).extra.ibl.samples; })()"
     )
     assert restarted == 0
     # It goes on by itself, pass after pass.
