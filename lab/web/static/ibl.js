@@ -182,6 +182,7 @@ export class IblView {
     const key = JSON.stringify([panel.name, panel.model?.code, panel.values, IBL, this.size, lab.lights.length]);
     if (key === this.key) {
       this.draw(); // the exposure may have changed
+      this.schedule(); // and go on if it waited off screen
       return;
     }
     this.key = key;
