@@ -6,6 +6,7 @@
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { topFirst } from "./views.js";
 import { explain, prepare, rows } from "./diagnosis.js";
+import { meanFlip } from "./flip.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -104,15 +105,17 @@ export function compareValues(check, expected, got) {
   return { passed: true, message: `all ${n} ${check.what} match` };
 }
 
-/** compare_image's verdict (FLIP is the grader's only): tone-mapped per-channel threshold
- * and a largest failing fraction; returns the signed difference (student - reference). */
-export function compareImage(check, reference, raw) {
+/** compare_image: tone-mapped per-channel threshold, a largest failing fraction and the
+ * mean FLIP of the tone-mapped image (`student8`, RGBA bytes) against the reference;
+ * returns the signed difference (student - reference) too. */
+export function compareImage(check, reference, raw, student8) {
   const size = check.size;
   const signed = new Float32Array(size * size);
   const covered = new Uint8Array(size * size);
   let nCovered = 0;
   let failing = 0;
   let bad = 0;
+  let largest = 0;
   for (let i = 0; i < size * size; i++) {
     if (reference[4 * i + 3] <= 127) continue;
     covered[i] = 1;
@@ -130,12 +133,15 @@ export function compareImage(check, reference, raw) {
       pick = 255;
     }
     signed[i] = pick;
+    largest = Math.max(largest, Math.abs(pick));
     if (Math.abs(pick) > check.threshold) failing++;
   }
+  // As the grader: FLIP only where some pixel differs at all.
+  const flip = failing || largest >= 1 ? meanFlip(reference, student8, size) : 0;
   const fraction = failing / Math.max(nCovered, 1);
   const summary = `${(100 * fraction).toFixed(2)}% of pixels off by more than ${formatG(check.threshold)}/255 ` +
-    `(allowed ${(100 * check.max_fraction).toFixed(2)}%), mean FLIP: brdf-lab grade computes it`;
-  const out = { signed, covered, fraction };
+    `(allowed ${(100 * check.max_fraction).toFixed(2)}%), mean FLIP ${flip.toFixed(4)}`;
+  const out = { signed, covered, fraction, flip };
   if (bad) return { ...out, passed: false, message: `${bad} pixels are NaN, infinite or negative (magenta); ${summary}` };
   return { ...out, passed: fraction <= check.max_fraction, message: summary };
 }
@@ -258,8 +264,9 @@ export function runCheck(panel, check, env) {
       { preamble: `const int LIGHT_COUNT = ${check.lights.length};` }), size, size);
       check.referencePixels ??= fromBase64(check.reference, Uint8Array);
       if (panel.lastLoop) return loopFailure(check, panel, env, sphereWhere(check, panel.lastLoop, env));
-      const result = compareImage(check, check.referencePixels, raw);
-      return { ...result, student: toneImage(raw, size), compared: true };
+      const student = toneImage(raw, size);
+      const result = compareImage(check, check.referencePixels, raw, student.data);
+      return { ...result, student, compared: true };
     }
     const degrees = fromBase64(check.angles, Float32Array);
     const got = probeValues(panel, env, degrees, check.count);
