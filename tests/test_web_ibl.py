@@ -83,6 +83,15 @@ def test_furnace_render_equals_the_albedo(page, ibl, name, values):
     assert page.errors == []
 
 
+def test_unnormalised_phong_gains_energy_in_the_furnace(page):
+    """Plain Phong with ks = 1, ke = 1 reflects more than arrives: the view says so."""
+    values = {"kd": [0.5] * 3, "ks": [1.0] * 3, "ke": 1.0}
+    image = web_ibl(page, "phong", values, "furnace", "brdf", 128)
+    status = page.evaluate("brdfLab.panel(0).extra.ibl.status.textContent")
+    assert "energy gain" in status, status
+    assert image[..., :3].max() > 1.0
+
+
 @pytest.mark.parametrize("strategy", ["cosine", "environment", "brdf", "mis_power"])
 def test_converged_image_agrees_with_the_desktop(page, ibl, strategy):
     """GGX under the sky: the page's render and the EGL render (same template, seeds and
@@ -126,3 +135,19 @@ def test_view_shows_the_count_and_restarts_when_a_slider_moves(page, output_dir)
     status = page.evaluate("brdfLab.panel(0).extra.ibl.status.textContent")
     assert "has no BRDF sampler: MIS of cosine-weighted and environment sampling" in status
     assert page.errors == []
+
+
+def test_address_holds_the_ibl_settings(page):
+    """ibl=ENVIRONMENT,STRATEGY,ROTATION in the address sets the view; changes are written."""
+    page.evaluate("location.hash = 'model=ward&views=ibl&ibl=studio,brdf,90'")
+    page.wait_for_function("brdfLab.panel(0)?.name === 'ward'")
+    assert page.evaluate("brdfLab.panel(0).extra.ibl.envBox.value") == "studio"
+    assert page.evaluate("brdfLab.panel(0).extra.ibl.strategyBox.value") == "brdf"
+    page.evaluate(
+        """() => { const box = brdfLab.panel(0).extra.ibl.envBox; box.value = 'grey_room';
+          box.dispatchEvent(new Event('change')); }"""
+    )
+    page.wait_for_function("location.hash.includes('ibl=grey_room,brdf,90')")
+    page.evaluate("location.hash = 'model=ward&views=ibl&ibl=moon'")
+    page.wait_for_function("brdfLab.notes().some(n => n.startsWith('ibl=moon'))")
+    assert page.evaluate("brdfLab.panel(0).extra.ibl.envBox.value") == "sky"

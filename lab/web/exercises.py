@@ -16,7 +16,6 @@ from dataclasses import asdict
 import numpy as np
 
 from lab.grading import mistakes
-from lab.grading.checks import VALUES_FILE, polar_angles, probe_angles, read_png
 from lab.grading.exercise import Exercise, ExerciseError, find_exercises
 from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.resources import data_dir

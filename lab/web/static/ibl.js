@@ -23,9 +23,33 @@ const ENV_UNIT = 8; // texture units 8..11 hold the environment, as on the deskt
 export const IBL_SIZE = 256; // render size (the desktop's), at most the page's sphere size
 export const MAX_SAMPLES = 1024; // per pixel: the render stops there
 const PASS_MS = 30; // aim of one pass, so that the page stays responsive
+const RINGS = 24; // rings of equal view angle for the furnace's reflectance peak
+const GAIN_SAMPLES = 64; // the furnace names an energy gain from this many samples on
 
 // Shared by every panel: the environment, the strategy and the rotation (degrees).
-export const IBL = { environment: "sky", strategy: "mis_power", rotation: 0 };
+const IBL_DEFAULTS = { environment: "sky", strategy: "mis_power", rotation: 0 };
+export const IBL = { ...IBL_DEFAULTS };
+
+/** The address's `ibl=ENVIRONMENT,STRATEGY,ROTATION` (any may be left out); a bad value is
+ * named in `notes` and keeps its default. Without the key, the defaults. */
+export function readIblHash(value, names, notes) {
+  Object.assign(IBL, IBL_DEFAULTS);
+  if (value === null) return;
+  const [environment, strategy, rotation] = value.split(",");
+  if (environment && names.includes(environment)) IBL.environment = environment;
+  else if (environment) notes.push(`ibl=${value}: the environment is one of ${names.join(", ")}`);
+  if (strategy && STRATEGIES.includes(strategy)) IBL.strategy = strategy;
+  else if (strategy) notes.push(`ibl=${value}: the strategy is one of ${STRATEGIES.join(", ")}`);
+  const turn = Number(rotation);
+  if (rotation && Number.isFinite(turn) && turn >= 0 && turn <= 360) IBL.rotation = turn;
+  else if (rotation) notes.push(`ibl=${value}: the rotation is a number of degrees from 0 to 360`);
+}
+
+/** The address part of the IBL settings ("" when all are the defaults). */
+export function iblHash() {
+  const same = Object.keys(IBL_DEFAULTS).every((k) => IBL[k] === IBL_DEFAULTS[k]);
+  return same ? "" : `ibl=${IBL.environment},${IBL.strategy},${IBL.rotation}`;
+}
 
 /** The model's BRDF sampler file text, or null (opened files, exercises, models without
  * one), as lab/ibl/integrator.py sampler_path decides. */
@@ -134,6 +158,29 @@ function texture(gl, format, width, height, data) {
   return t;
 }
 
+/** The largest mean luminance over rings of equal view angle of a mean image (RGBA, any
+ * row order): in the white furnace, the most a ring reflects (integrator.ring_peak). */
+export function ringPeak(data, size, luma) {
+  const sum = new Float64Array(RINGS);
+  const count = new Float64Array(RINGS);
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const px = ((x + 0.5) / size) * 2 - 1;
+      const py = ((y + 0.5) / size) * 2 - 1;
+      const r2 = px * px + py * py;
+      if (r2 > 1) continue;
+      const theta = (Math.acos(Math.sqrt(1 - r2)) * 180) / Math.PI;
+      const ring = Math.min(Math.floor((theta / 90) * RINGS), RINGS - 1);
+      const i = 4 * (y * size + x);
+      sum[ring] += luma[0] * data[i] + luma[1] * data[i + 1] + luma[2] * data[i + 2];
+      count[ring]++;
+    }
+  }
+  let peak = 0;
+  for (let r = 0; r < RINGS; r++) if (count[r]) peak = Math.max(peak, sum[r] / count[r]);
+  return peak;
+}
+
 /** The IBL view of one panel. */
 export class IblView {
   constructor(panel, env) {
@@ -194,6 +241,7 @@ export class IblView {
     this.samples = 0;
     this.passes = 0;
     this.error = "";
+    this.peak = null;
     if (!this.target) this.makeTarget(gl);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
     gl.clearColor(0, 0, 0, 0);
@@ -335,6 +383,10 @@ export class IblView {
       for (let c = 0; c < 3; c++) data[i + c] /= this.samples;
       data[i + 3] = 1;
     }
+    // The furnace test: under radiance 1 no ring may reflect more than 1 (beyond the noise).
+    const furnace = IBL.environment === "furnace" && this.samples >= GAIN_SAMPLES;
+    this.peak = furnace ? ringPeak(data, this.size, this.env.C.LUMA) : null;
+    this.showStatus();
     this.canvas.getContext("2d").putImageData(toImage(data, this.size, this.size, lab.exposure), 0, 0);
   }
 
@@ -342,10 +394,11 @@ export class IblView {
     const model = this.panel.model;
     const note = model ? fallback(model, IBL.strategy, this.env.lab.files) : null;
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
+    const gain = this.peak > 1.01 ? ` · energy gain: a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
     const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}` +
-      (note ? ` · ${note}` : "");
+      (note ? ` · ${note}` : "") + gain;
     this.status.textContent = text;
-    this.status.classList.toggle("bad", Boolean(this.error || note));
+    this.status.classList.toggle("bad", Boolean(this.error || note || gain));
   }
 
   /** The running mean as the desktop's Progressive.image(): rows from the top, alpha 1 on

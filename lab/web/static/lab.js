@@ -5,7 +5,7 @@ import { direction, planeOfIncidence } from "./geometry.js";
 import { SLIDER_STEPS, parseRgb, parseValue, sliderToValue, valueToSlider } from "./values.js";
 import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
-import { IBL_TITLE, IblView } from "./ibl.js";
+import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 import { openModelFile } from "./measured.js";
@@ -1100,6 +1100,7 @@ function readHash() {
   lab.plot = "polar";
   lab.scaleEach = false;
   const params = new URLSearchParams(location.hash.slice(1));
+  let iblValue = null; // the IBL view's settings (ibl.js)
   const panels = [];
   const lights = [];
   for (const [key, value] of params) {
@@ -1137,7 +1138,8 @@ function readHash() {
       const unknown = names.filter((n) => !VIEWS[n]);
       if (unknown.length) lab.notes.push(`views=${value}: unknown ${unknown.join(", ")}; choose from ${Object.keys(VIEWS).join(", ")}`);
       lab.views = Object.keys(VIEWS).filter((n) => names.includes(n));
-    } else if (key in HASH_SETTINGS) {
+    } else if (key === "ibl") iblValue = value;
+    else if (key in HASH_SETTINGS) {
       const [field, lo, hi] = HASH_SETTINGS[key];
       const number = Number(value);
       if (value === "" || !Number.isFinite(number) || number < lo || number > hi) {
@@ -1167,6 +1169,7 @@ function readHash() {
     }
     panel.values = checked;
   }
+  readIblHash(iblValue, lab.environments?.names || [], lab.notes);
   if (lights.length) lab.lights = lights;
   const kept = panels.filter((p) => p.name);
   if (kept.length > MAX_PANELS) {
@@ -1197,6 +1200,7 @@ function writeHash() {
   if (lab.cosWeighted) parts.push("cos=1");
   if (lab.polarLog) parts.push("log=1");
   if (lab.views.length) parts.push(`views=${lab.views.join(",")}`);
+  if (iblHash()) parts.push(iblHash());
   for (const [key, [field]] of Object.entries(HASH_SETTINGS)) {
     if (lab[field] !== SETTINGS[field]) parts.push(`${key}=${formatG(round(lab[field]))}`);
   }
