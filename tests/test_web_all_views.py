@@ -1,4 +1,4 @@
-"""The page with every view, the new ones included (3D lobe, spherical harmonics, D, G, F),
+"""The page with every view, the new ones included (3D lobe, spherical harmonics, D, G, F, IBL),
 at the issue's three screen sizes: nothing past the right edge; screenshots saved."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ pytestmark = pytest.mark.skipif(
     chromium_path() is None, reason="Chromium is not installed (apt-get install chromium)"
 )
 
-VIEWS = "lobe3d,sh,terms,slice,albedo,object"
+VIEWS = "lobe3d,sh,terms,slice,albedo,object,ibl"
 
 
 @pytest.fixture(scope="module")
