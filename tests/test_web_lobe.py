@@ -61,7 +61,7 @@ def test_lobe_matches_desktop(page, renderer, name, values, settings, output_dir
     page.evaluate("([n, v]) => brdfLab.setModel(0, n, v)", [name, values])
     settings = {"polarLog": False, "cosWeighted": False, **settings}
     page.evaluate("s => brdfLab.setSettings(s)", settings)
-    page.evaluate("brdfLab.state.lobe = {yaw: -0.9, pitch: 0.45, zoom: 2.0}")
+    page.evaluate("brdfLab.setSettings({lobeYaw: -0.9, lobePitch: 0.45, lobeZoom: 2})")
     page.evaluate("brdfLab.setViews(['lobe3d'])")
     assert page.evaluate("brdfLab.errors(0)") == ""
     web, out = read(page)
@@ -105,7 +105,7 @@ def test_lobe_matches_desktop(page, renderer, name, values, settings, output_dir
 def test_drag_orbits_and_models_share_a_scale(page, renderer):
     page.evaluate("brdfLab.setModel(0, 'phong', {ke: 30})")
     page.evaluate("brdfLab.setSettings({polarLog: false, cosWeighted: false})")
-    page.evaluate("brdfLab.state.lobe = {yaw: -0.6, pitch: 0.35, zoom: 1}")
+    page.evaluate("brdfLab.setSettings({lobeYaw: -0.6, lobePitch: 0.35, lobeZoom: 1})")
     page.evaluate("brdfLab.setViews(['lobe3d'])")
     box = page.locator("canvas.lobe3d").first.bounding_box()
     x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
@@ -114,7 +114,7 @@ def test_drag_orbits_and_models_share_a_scale(page, renderer):
     page.mouse.move(x + box["width"] / 4, y, steps=4)
     page.mouse.up()
     page.evaluate("brdfLab.renderNow()")
-    yaw = page.evaluate("brdfLab.state.lobe.yaw")
+    yaw = page.evaluate("brdfLab.state.lobeYaw")
     assert yaw == pytest.approx(-0.6 + np.pi / 4, abs=0.05)
     # A second, brighter model: both panels draw on its scale.
     page.evaluate("document.querySelector('#add-model').click()")
@@ -123,4 +123,22 @@ def test_drag_orbits_and_models_share_a_scale(page, renderer):
     strong = renderer.lobe_peak(load_model("phong"), {"ks": [1, 1, 1], "ke": 200.0}, *LIGHT)
     assert scales[0] == scales[1] == pytest.approx(max(strong), rel=REL_TOL)
     page.evaluate("() => brdfLab.state.panels[1].root.querySelector('button.close').click()")
+    assert page.errors == []
+
+
+def test_camera_and_order_in_the_address_and_presets(page):
+    page.evaluate("brdfLab.setViews(['lobe3d', 'sh'])")
+    page.evaluate("brdfLab.setSettings({lobeYaw: 0.25, lobeZoom: 1.5, shOrder: 4})")
+    address = page.evaluate("location.hash")
+    assert "lyaw=0.25" in address and "lzoom=1.5" in address and "sh=4" in address
+    hash_ = page.evaluate(
+        "brdfLab.presetHash({model: [{model: 'ggx'}], views: ['lobe3d', 'sh'],"
+        " settings: {lobe_yaw: 1.2, lobe_pitch: 0.8, lobe_zoom: 2.5, sh_order: 3}})"
+    )
+    assert hash_["skipped"] == []
+    page.evaluate("h => { location.hash = h; }", hash_["hash"])
+    page.wait_for_function("brdfLab.state.shOrder === 3 && brdfLab.state.lobeZoom === 2.5")
+    state = page.evaluate("[brdfLab.state.lobeYaw, brdfLab.state.lobePitch, brdfLab.state.views]")
+    assert state == [1.2, 0.8, ["lobe3d", "sh"]]
+    page.evaluate("brdfLab.setSettings({lobeYaw: -0.6, lobePitch: 0.35, lobeZoom: 1, shOrder: 8})")
     assert page.errors == []

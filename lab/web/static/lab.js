@@ -20,7 +20,9 @@ const SPHERE_FAST_MIN = 384; // spheres this large draw at half resolution while
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
 // Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
-const SETTINGS = { phiD: 90, shape: 0, mode: 1, yaw: 0.6, pitch: 0.5, polarLog: false, phiO: 0 };
+// The 3D lobe's camera and the harmonics' order as the desktop's (lab/views/lobe3d.py, sh.py).
+const SETTINGS = { phiD: 90, shape: 0, mode: 1, yaw: 0.6, pitch: 0.5, polarLog: false, phiO: 0,
+  lobeYaw: -0.6, lobePitch: 0.35, lobeZoom: 1, shOrder: 8 };
 
 const DISPLAY_SHADER = `#version 300 es
 precision highp float;
@@ -1144,7 +1146,7 @@ function readHash() {
       const number = Number(value);
       if (value === "" || !Number.isFinite(number) || number < lo || number > hi) {
         lab.notes.push(`${key}=${value}: give a number from ${lo} to ${hi}`);
-      } else lab[field] = Number.isInteger(SETTINGS[field]) && field !== "yaw" && field !== "pitch" ? Math.round(number) : number;
+      } else lab[field] = Number.isInteger(SETTINGS[field]) && !CONTINUOUS.includes(field) ? Math.round(number) : number;
     }
     else if (panels.length) panels[panels.length - 1].values[key] = value;
     else lab.notes.push(`${key}=${value}: give model=NAME before its parameters`);
@@ -1212,7 +1214,10 @@ function writeHash() {
 }
 
 // Address keys of the page settings: [field of lab, smallest, largest].
-const HASH_SETTINGS = { phid: ["phiD", 0, 180], phio: ["phiO", 0, 180], shape: ["shape", 0, 3],
+// Settings that keep their fractions in an address (the others with whole defaults round).
+const CONTINUOUS = ["yaw", "pitch", "lobeZoom"];
+const HASH_SETTINGS = { lyaw: ["lobeYaw", -100, 100], lpitch: ["lobePitch", -1.5, 1.5], lzoom: ["lobeZoom", 0.2, 8],
+  sh: ["shOrder", 0, 16], phid: ["phiD", 0, 180], phio: ["phiO", 0, 180], shape: ["shape", 0, 3],
   mode: ["mode", 0, 3], yaw: ["yaw", -100, 100], pitch: ["pitch", -1.5, 1.5] };
 
 /** The address of a desktop preset: its models (library names) and light settings; what the
@@ -1236,7 +1241,8 @@ export function presetHash(preset, skipped = []) {
   if (s.polar_log) parts.push("log=1");
   const views = (preset.views || []).filter((v) => VIEWS[v]);
   if (views.length) parts.push(`views=${views.join(",")}`);
-  const desktop = { phi_d: "phid", shape: "shape", mode: "mode", yaw: "yaw", pitch: "pitch" };
+  const desktop = { phi_d: "phid", shape: "shape", mode: "mode", yaw: "yaw", pitch: "pitch", lobe_yaw: "lyaw",
+    lobe_pitch: "lpitch", lobe_zoom: "lzoom", sh_order: "sh" };
   for (const [name, key] of Object.entries(desktop)) if (name in s) parts.push(`${key}=${s[name]}`);
   if (typeof s.ambient === "number" && s.ambient > 0) parts.push(`ambient=${formatG(s.ambient)}`);
   if (lab.size !== 384) parts.push(`size=${lab.size}`);

@@ -7,7 +7,6 @@ import { VERSION_LINES, assembleFragment, translateLog } from "./assemble.js";
 
 export const LOBE_GRID = [61, 121]; // vertices in theta_o and phi_o (lab/views/lobe3d.py)
 export const LOBE_FAST_GRID = [25, 49]; // while a slider moves
-export const CAMERA = { yaw: -0.6, pitch: 0.35, zoom: 1 }; // LobeCamera's defaults
 const TARGET = [0, 0, 0.3];
 const DISTANCE = 5;
 const SCALE = 0.85;
@@ -73,7 +72,6 @@ export class LobeView {
     this.panel = panel;
     this.env = env;
     const { lab } = env;
-    lab.lobe ??= { ...CAMERA };
     this.canvas = env.el("canvas", { class: "lobe3d", width: lab.size, height: Math.round(lab.size * 0.75) });
     this.root = env.viewBox(this.canvas, "3D lobe", () => `${panel.name}_lobe3d.png`);
     this.wire = env.el("input", { type: "checkbox" });
@@ -81,23 +79,39 @@ export class LobeView {
     this.note = env.el("div", { class: "view-note" });
     this.root.append(env.el("label", { class: "group", title: "grid lines only: the surface shows through" }, this.wire, " wire"),
       this.note);
+    // One finger or the mouse orbits; two fingers pinch to zoom.
+    const pointers = new Map();
+    const spread = () => {
+      const [a, b] = [...pointers.values()];
+      return Math.hypot(a[0] - b[0], a[1] - b[1]);
+    };
+    const zoom = (factor) => {
+      lab.lobeZoom = Math.min(Math.max(lab.lobeZoom * factor, 0.2), 8);
+      env.scheduleRender();
+    };
     this.canvas.addEventListener("pointerdown", (e) => {
       this.canvas.setPointerCapture(e.pointerId);
-      this.drag = [e.clientX, e.clientY];
+      pointers.set(e.pointerId, [e.clientX, e.clientY]);
     });
     this.canvas.addEventListener("pointermove", (e) => {
-      if (!this.drag || !e.buttons) return;
+      const last = pointers.get(e.pointerId);
+      if (!last || !e.buttons) return;
+      if (pointers.size === 2) {
+        const before = spread();
+        pointers.set(e.pointerId, [e.clientX, e.clientY]);
+        if (before > 0) zoom(spread() / before);
+        return;
+      }
       const rect = this.canvas.getBoundingClientRect();
-      lab.lobe.yaw += ((e.clientX - this.drag[0]) / rect.width) * Math.PI;
-      lab.lobe.pitch = Math.min(Math.max(lab.lobe.pitch + ((e.clientY - this.drag[1]) / rect.height) * Math.PI, -1.5), 1.5);
-      this.drag = [e.clientX, e.clientY];
+      lab.lobeYaw += ((e.clientX - last[0]) / rect.width) * Math.PI;
+      lab.lobePitch = Math.min(Math.max(lab.lobePitch + ((e.clientY - last[1]) / rect.height) * Math.PI, -1.5), 1.5);
+      pointers.set(e.pointerId, [e.clientX, e.clientY]);
       env.scheduleRender();
     });
-    this.canvas.addEventListener("pointerup", () => (this.drag = null));
+    for (const end of ["pointerup", "pointercancel"]) this.canvas.addEventListener(end, (e) => pointers.delete(e.pointerId));
     this.canvas.addEventListener("wheel", (e) => {
       e.preventDefault();
-      lab.lobe.zoom = Math.min(Math.max(lab.lobe.zoom * Math.exp(-0.0015 * e.deltaY), 0.2), 8);
-      env.scheduleRender();
+      zoom(Math.exp(-0.0015 * e.deltaY));
     }, { passive: false });
   }
 
@@ -207,9 +221,9 @@ export class LobeView {
     const set = {
       u_grid: () => gl.uniform2i(u.u_grid, grid[0], grid[1]),
       u_light_angles: () => gl.uniform2fv(u.u_light_angles, this.uniforms(grid).u_light_angles),
-      u_yaw: () => gl.uniform1f(u.u_yaw, lab.lobe.yaw),
-      u_pitch: () => gl.uniform1f(u.u_pitch, lab.lobe.pitch),
-      u_zoom: () => gl.uniform1f(u.u_zoom, lab.lobe.zoom),
+      u_yaw: () => gl.uniform1f(u.u_yaw, lab.lobeYaw),
+      u_pitch: () => gl.uniform1f(u.u_pitch, lab.lobePitch),
+      u_zoom: () => gl.uniform1f(u.u_zoom, lab.lobeZoom),
       u_perspective: () => gl.uniform1i(u.u_perspective, 1),
       // Clip y flipped (as LobeCamera.uniforms): the first row read back is the top row.
       u_aspect: () => gl.uniform2f(u.u_aspect, short / width, -short / height),
@@ -251,7 +265,7 @@ export class LobeView {
     for (let k = 0; k < width * height * 4; k++) image.data[k] = Math.round(255 * Math.min(Math.max(this.data[k], 0), 1));
     const ctx = this.canvas.getContext("2d");
     ctx.putImageData(image, 0, 0);
-    const camera = lab.lobe;
+    const camera = { yaw: lab.lobeYaw, pitch: lab.lobePitch, zoom: lab.lobeZoom };
     const at = (p) => project(camera, p, width, height);
     const line = (a, b, rgb, widthPx, dash = []) => {
       ctx.strokeStyle = css(rgb);
@@ -294,7 +308,7 @@ export class LobeView {
     const scale = lab.polarLog ? `, log over ${this.env.C.PLOT_DECADES} decades` : "";
     ctx.fillText(`${what}${scale}`, 4, font + 2);
     ctx.fillText(`radius 1: ${formatG(Number(this.scale.toPrecision(3)))} sr⁻¹`, 4, 2 * font + 4);
-    this.note.textContent = "drag to orbit, wheel to zoom" + (this.spike > 0 ? `; the line along R: the δ spike, ρ = ${formatG(Number(this.spike.toPrecision(3)))}` : "");
+    this.note.textContent = "drag to orbit; wheel or pinch to zoom" + (this.spike > 0 ? `; the line along R: the δ spike, ρ = ${formatG(Number(this.spike.toPrecision(3)))}` : "");
   }
 
   /** The float picture (display values over the background, row 0 at the top), its scale,
@@ -302,6 +316,6 @@ export class LobeView {
   read() {
     const { width, height } = this.canvas;
     const grid = Array.from({ length: LOBE_GRID[0] * LOBE_GRID[1] }, (_, k) => this.peakCache?.texels[4 * k]);
-    return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid, camera: { ...this.env.lab.lobe } };
+    return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid };
   }
 }

@@ -130,7 +130,6 @@ export class SHView {
   constructor(panel, env) {
     this.panel = panel;
     this.env = env;
-    env.lab.shOrder ??= 8;
     this.canvas = env.el("canvas", { class: "sh", width: 384, height: 220 });
     this.root = env.viewBox(this.canvas, "spherical harmonics", () => `${panel.name}_sh.png`);
     this.order = env.el("input", { type: "number", min: 0, max: MAX_ORDER, step: 1, value: env.lab.shOrder });
