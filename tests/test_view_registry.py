@@ -82,3 +82,16 @@ def test_a_new_view_gets_a_dock(extra_view, qtbot, app_renderer):
     retro = win.docks["retro"].widget()
     retro.redraw()
     assert retro.label.text() == f"peak {0.8 / np.pi:.4g} 1/sr"
+    # Laid out from its spec like the others: a row of its own under the bottom row, and an
+    # entry in the File menu's PNG export.
+    win.resize(1280, 800)
+    win.show()
+    qtbot.waitExposed(win)
+    win.fit_docks()
+    qtbot.wait(50)
+    dock, above = win.docks["retro"], win.docks["slice"]
+    assert dock.isVisible() and dock.height() > 60 and dock.width() > 600
+    assert dock.geometry().top() >= above.geometry().bottom()
+    file_menu = win.menuBar().actions()[0].menu()
+    export = next(a.menu() for a in file_menu.actions() if a.text() == "Export view as PNG")
+    assert "Retroreflection" in [a.text() for a in export.actions()]

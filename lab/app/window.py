@@ -40,19 +40,6 @@ DOCK_AREAS = {
 }
 
 
-# What a narrow dock calls its view when the whole title does not fit.
-SHORT_TITLES = {
-    "sphere": "Spheres",
-    "polar": "Polar",
-    "slice": "Slice θh θd",
-    "albedo": "Albedo",
-    "object": "Object",
-    "sh": "SH",
-    "lobe3d": "Lobe",
-    "ibl": "IBL",
-}
-
-
 class MainWindow(ModelFiles, QMainWindow):
     """The lab. `frame_done(n)` is emitted after each redraw of the visible views."""
 
@@ -117,7 +104,7 @@ class MainWindow(ModelFiles, QMainWindow):
                 room = dock.width() // (len(tabs) + 1) - 30  # a tab's margins
             title = spec.title
             if QFontMetrics(font).horizontalAdvance(title) > room:
-                title = SHORT_TITLES.get(spec.name, title)
+                title = spec.short_title or title
             if dock.windowTitle() != title:
                 dock.setWindowTitle(title)
 
@@ -166,6 +153,7 @@ class MainWindow(ModelFiles, QMainWindow):
         # Every registered view gets a dock, placed by its spec: rows in its area stack
         # (the spheres on top), the views of a row sit side by side.
         rows: dict[tuple[str, int], list[QDockWidget]] = {}
+        specs: dict[tuple[str, int], list[views.ViewSpec]] = {}
         tabs: list[tuple[str, QDockWidget]] = []
         for spec in views.all_views():
             view = spec.widget_class()(self.lab, self.renderer)
@@ -180,15 +168,19 @@ class MainWindow(ModelFiles, QMainWindow):
                 tabs.append((spec.tab_of, dock))
                 continue
             rows.setdefault(spec.dock, []).append(dock)
+            specs.setdefault(spec.dock, []).append(spec)
         self.dock_rows = [row for _, row in sorted(rows.items())]
+        # The rows top down: the right area's (beside the controls), then the bottom's.
+        areas = list(DOCK_AREAS)
+        self.view_rows = [specs[k] for k in sorted(specs, key=lambda k: (areas.index(k[0]), k[1]))]
         for area in DOCK_AREAS:
-            above = None
-            for _, row in sorted((key[1], docks) for key, docks in rows.items() if key[0] == area):
-                if above is not None:
-                    self.splitDockWidget(above, row[0], Qt.Orientation.Vertical)
+            stack = [rows[key] for key in sorted(k for k in rows if k[0] == area)]
+            # The rows stacked first, then split into their views: each row spans the area.
+            for above, row in zip(stack, stack[1:], strict=False):
+                self.splitDockWidget(above[0], row[0], Qt.Orientation.Vertical)
+            for row in stack:
                 for left, right in zip(row, row[1:], strict=False):
                     self.splitDockWidget(left, right, Qt.Orientation.Horizontal)
-                above = row[0]
         for owner, dock in tabs:  # a tab behind its owner, closed until the View menu opens it
             self.tabifyDockWidget(self.docks[owner], dock)
             self.docks[owner].raise_()
@@ -202,44 +194,44 @@ class MainWindow(ModelFiles, QMainWindow):
 
     def fit_docks(self) -> None:
         """Dock sizes for the window's size: controls 27 % of the width (at least 300 px),
-        the spheres' row a quarter of the height, the rest to the plots."""
+        the rest to the views, shared out by their specs' `size` (each row's height, each
+        view's width in its row)."""
         width, height = max(self.width(), 800), max(self.height(), 600)
         # Presenter mode: the views get the room, the (larger) controls a narrow column.
         left = min(max(300, int(0.27 * width)), self.controls_cap())
         self.controls_dock.setMaximumWidth(self.controls_cap())
         QTimer.singleShot(0, self.fit_titles)  # tabs share their bar's width
+        if not self.view_rows:
+            return
+        dock = {spec.name: self.docks[spec.name] for row in self.view_rows for spec in row}
         # Qt moves a separator only when the docks on both sides of it are named.
         self.resizeDocks(
-            [self.controls_dock, self.docks["sphere"]],
+            [self.controls_dock, dock[self.view_rows[0][0].name]],
             [left, width - left],
             Qt.Orientation.Horizontal,
         )
         # One dock per shown row (a preset may hide a row's first dock, or the whole row).
-        rows = [("sphere",), ("polar", "lobe3d", "sh"), ("slice", "albedo", "object")]
-        shares = (0.28, 0.42, 0.3)
-        picked = [
-            (next(self.docks[n] for n in row if not self.docks[n].isHidden()), share)
-            for row, share in zip(rows, shares, strict=True)
-            if any(not self.docks[n].isHidden() for n in row)
-        ]
+        picked = []
+        for row in self.view_rows:
+            shown = [dock[s.name] for s in row if not dock[s.name].isHidden()]
+            if shown:
+                picked.append((shown[0], max(s.size[1] for s in row)))
         if picked:
             total = sum(share for _, share in picked)
             self.resizeDocks(
-                [dock for dock, _ in picked],
+                [d for d, _ in picked],
                 [int(share / total * height) for _, share in picked],
                 Qt.Orientation.Vertical,
             )
         right = width - left
-        self.resizeDocks(
-            [self.docks["polar"], self.docks["lobe3d"], self.docks["sh"]],
-            [int(0.33 * right), int(0.3 * right), int(0.37 * right)],
-            Qt.Orientation.Horizontal,
-        )
-        self.resizeDocks(
-            [self.docks["slice"], self.docks["albedo"], self.docks["object"]],
-            [int(0.34 * right), int(0.31 * right), int(0.35 * right)],
-            Qt.Orientation.Horizontal,
-        )
+        for row in self.view_rows:
+            if len(row) > 1:
+                total = sum(s.size[0] for s in row)
+                self.resizeDocks(
+                    [dock[s.name] for s in row],
+                    [int(s.size[0] / total * right) for s in row],
+                    Qt.Orientation.Horizontal,
+                )
 
     def view(self, name: str) -> View:
         return next(v for v in self.views if v.name == name)
@@ -258,7 +250,9 @@ class MainWindow(ModelFiles, QMainWindow):
         export = file_menu.addMenu("Export view as PNG")
         for view in self.views:
             export.addAction(view.title, lambda v=view: self.ask_export(v))
-        self._action(file_menu, "Export polar data as CSV…", self.view("polar")._ask_csv)
+        for view in self.views:  # a view's own exports (the polar plot's CSV)
+            for text, slot in view.file_actions():
+                self._action(file_menu, text, slot)
         file_menu.addSeparator()
         self._action(file_menu, "Quit", self.close, "Ctrl+Q")
         presets = bar.addMenu("&Presets")

@@ -83,6 +83,10 @@ class ViewSpec:
     # The app's dock area ("right" or "bottom") and row there: views of a row sit side by side.
     dock: tuple[str, int] = ("right", 1)
     tab_of: str = ""  # another view's name: share its dock as a tab behind it (heavy views)
+    # Its share of its row's width, and its row's share of the window's height (a row takes
+    # the largest of its views'), when the window lays the docks out.
+    size: tuple[float, float] = (0.33, 0.3)
+    short_title: str = ""  # what a dock too narrow for the title calls it
     widget: str = ""  # "module:Class" of its Qt widget (imported only by the app)
     plot: Callable[[PlotJob], None] | None = None  # its PNG for `render --view` (None: app only)
     order: int = 100  # position in menus and docks

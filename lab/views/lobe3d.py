@@ -439,6 +439,8 @@ VIEW = ViewSpec(
         "lobe_zoom": Setting(1.0, 0.2, 8.0, "zoom"),
     },
     dock=("right", 1),
+    short_title="Lobe",
+    size=(0.3, 0.42),
     widget="lab.app.views.lobe3d:LobeView",
     plot=plot,
     order=30,

@@ -20,6 +20,8 @@ VIEW = ViewSpec(
         "pitch": Setting(0.5, -1.5, 1.5, "pitch"),
     },
     dock=("bottom", 0),
+    size=(0.35, 0.3),
+    short_title="Object",
     widget="lab.app.views.object:ObjectView",
     order=70,
 )

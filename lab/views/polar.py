@@ -22,6 +22,8 @@ VIEW = ViewSpec(
         "polar_cos": Setting(False, label="f_r · cos θo"),
     },
     dock=("right", 1),
+    size=(0.33, 0.42),
+    short_title="Polar",
     widget="lab.app.views.polar:PolarView",
     plot=plot,
     order=20,

@@ -9,6 +9,8 @@ VIEW = ViewSpec(
     title="Spherical harmonics",
     settings={"sh_order": Setting(8, 0, 16, "order")},
     dock=("right", 1),
+    size=(0.37, 0.42),
+    short_title="SH",
     widget="lab.app.views.sh:SHView",
     order=40,
 )

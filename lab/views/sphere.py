@@ -34,6 +34,8 @@ VIEW = ViewSpec(
         "multiply_cos": Setting(True, label="× N·L"),
     },
     dock=("right", 0),
+    size=(1.0, 0.28),
+    short_title="Spheres",
     widget="lab.app.views.sphere:SphereView",
     plot=plot,
     order=10,

@@ -4,6 +4,7 @@ refinement, PNG export), the image row, tone mapping and the cache keys."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from functools import lru_cache
 from pathlib import Path
 
@@ -210,6 +211,10 @@ class View(QWidget):
         for _ in range(8):  # the refinement steps of the finest view
             if not self.redraw(fast=False):
                 break
+
+    def file_actions(self) -> list[tuple[str, Callable[[], None]]]:
+        """(menu text, slot) of what the view adds to the File menu besides its PNG."""
+        return []
 
     def export_png(self, path: str | Path) -> None:
         self.up_to_date()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import html
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -240,6 +241,9 @@ class PolarView(View):
             if st is state:
                 return polar.theta_o, polar.values.astype(np.float64) @ LUMA
         return None
+
+    def file_actions(self) -> list[tuple[str, Callable[[], None]]]:
+        return [("Export polar data as CSV…", self._ask_csv)]
 
     def _ask_csv(self) -> None:
         from PyQt6.QtWidgets import QFileDialog
