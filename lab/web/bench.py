@@ -9,7 +9,7 @@ from dataclasses import dataclass
 FIRST_RENDER_TARGET_MS = 300.0
 ALL_VIEWS = "lobe3d,sh,terms,slice,albedo,object"  # with the sphere and the polar plot: every view
 SLIDER_P95_TARGET_MS = 33.0
-VIEWPORT = {"width": 1280, "height": 2000}
+VIEWPORT = {"width": 1920, "height": 2000}  # every view on screen at 512 px
 # Every view box that is not wholly inside the window.
 OFFSCREEN_JS = """[...document.querySelectorAll('#panels .view')].filter(v => {
   const r = v.getBoundingClientRect();

@@ -354,10 +354,15 @@ export class IblView {
 
   /** Runs passes until `samples` per pixel now (tests, benchmarks); resolves to the count. */
   async converge(samples = MAX_SAMPLES, spp = 16) {
+    if (!this.ready) this.render(); // never drawn yet (off screen from the start)
     await this.ready;
     cancelAnimationFrame(this.pending);
     this.pending = 0;
-    while (this.samples < samples) this.pass(Math.min(spp, samples - this.samples));
+    while (this.samples < samples) {
+      const before = this.samples;
+      this.pass(Math.min(spp, samples - this.samples));
+      if (this.samples === before) break; // no environment (it failed to load): say so below
+    }
     this.stale = false;
     this.draw();
     return this.samples;
