@@ -8,9 +8,10 @@ check renders and how it is compared belongs to its kind (lab.grading.kinds).
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Iterator
-from concurrent.futures import ThreadPoolExecutor
-from dataclasses import replace
+from concurrent.futures import Future, ThreadPoolExecutor
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -46,10 +47,12 @@ __all__ = [
     "VALUES_FILE",
     "CheckResult",
     "Grader",
+    "Prepared",
     "expected_value",
     "failed",
     "hidden_variant",
     "polar_angles",
+    "prepare",
     "probe_angles",
     "render",
     "special_angles",
@@ -104,6 +107,31 @@ def stopped_where(check: Check, x: int, y: int) -> str:
     return kind_of(check).where(check, x, y)
 
 
+# -- the submission, before any OpenGL -------------------------------------------------------
+@dataclass
+class Prepared:
+    """A submission read and preprocessed (glslang), with its GLSL ES compile under way."""
+
+    code: str = ""
+    model: Model | None = None
+    error: str = ""  # why it cannot be graded at all (every check gets it)
+    portable: Future | None = None  # the portability warnings
+
+
+def prepare(exercise: Exercise, submission: Path, root: Path | None = None) -> Prepared:
+    """Read and build the submission (no GL needed: a worker does this while its context is
+    made). The GLSL ES compile runs beside the checks; its warnings go with the last one."""
+    try:
+        code = read_submission(submission, root)
+        model = build_model(exercise, submission, code)
+    except SubmissionError as err:
+        return Prepared(error=str(err))
+    executor = ThreadPoolExecutor(max_workers=1)
+    portable = executor.submit(portability_warnings, model, label_of(submission))
+    executor.shutdown(wait=False)
+    return Prepared(code, model, portable=portable)
+
+
 # -- the grader -----------------------------------------------------------------------------
 class Grader:
     """Grades submissions check by check with one OpenGL context (inside a worker)."""
@@ -111,6 +139,7 @@ class Grader:
     def __init__(self) -> None:
         self._renderer: Renderer | None = None
         self._solutions: dict[Path, Model] = {}
+        self._references: dict[tuple, tuple] = {}
         self.explainer = None  # lab.grading.explain.Explainer, set by the runner
 
     @property
@@ -133,7 +162,22 @@ class Grader:
             return expected_value(
                 render(self.renderer, self.solution_model(exercise), check), check
             )
-        return kind_of(check).load_reference(exercise, check)
+        # Read once per worker (a class shares them), again when a file there changed.
+        folder = exercise.references
+        try:
+            stamp = tuple(
+                sorted((e.name, e.stat().st_mtime_ns, e.stat().st_size) for e in os.scandir(folder))
+            )
+        except OSError:
+            stamp = ()
+        key = (folder, check.name, check.kind)
+        cached = self._references.get(key)
+        if cached is None or cached[0] != stamp:
+            reference = kind_of(check).load_reference(exercise, check)
+            if isinstance(reference, np.ndarray):
+                reference.flags.writeable = False
+            cached = self._references[key] = (stamp, reference)
+        return cached[1]
 
     def run(
         self,
@@ -142,22 +186,19 @@ class Grader:
         seed: int | None = None,
         skip: frozenset[str] = frozenset(),
         root: Path | None = None,
+        prepared: Prepared | None = None,
     ) -> Iterator[CheckResult]:
         """Grade every check not in `skip`, yielding each result as soon as it is known.
 
-        `root` is the submission's top folder (no link below it is followed)."""
+        `root` is the submission's top folder (no link below it is followed); `prepared`
+        is what prepare() made of the file already, if anything."""
         todo = [(i, c) for i, c in enumerate(exercise.checks) if c.name not in skip]
-        try:
-            code = read_submission(submission, root)
-            model = build_model(exercise, submission, code)
-        except SubmissionError as err:
+        ready = prepared or prepare(exercise, submission, root)
+        if ready.error:
             for _, check in todo:
-                yield failed(check, str(err), status="error")
+                yield failed(check, ready.error, status="error")
             return
-        # The GLSL ES compile runs beside the checks; its warnings go with the last one.
-        executor = ThreadPoolExecutor(max_workers=1)
-        portable = executor.submit(portability_warnings, model, label_of(submission))
-        executor.shutdown(wait=False)
+        code, model, portable = ready.code, ready.model, ready.portable
         for index, check in todo:
             try:
                 if seed is not None:

@@ -67,17 +67,26 @@ def _write_error_results(args, message: str) -> None:
 
 
 def _grade(args) -> int:
-    from lab.grading import report
-    from lab.grading.runner import Pool, Task
+    from lab.grading.runner import Pool
 
-    exercises = _exercises(args.exercise)
     if args.make_references:
         from lab.grading.references import make_references
 
+        _exercises(args.exercise)
         for path in args.exercise:
             for written in make_references(path):
                 print(f"wrote {written}")
         return 0
+    # The worker starts first: it loads numpy and OpenGL and makes its context while this
+    # process reads the exercises and the report code (one exercise: latency is the point).
+    with Pool(1, args.timeout) as pool:
+        return _grade_with(pool, args)
+
+
+def _grade_with(pool, args) -> int:
+    from lab.grading.runner import Task
+
+    exercises = _exercises(args.exercise)
     if args.submission and len(exercises) != 1:
         raise UsageError("--submission grades one exercise: give one EXERCISE_DIR (or use --from)")
     if args.seed is not None and not all(e.solution.is_file() for e in exercises):
@@ -95,9 +104,10 @@ def _grade(args) -> int:
             submission = exercise.stub
         tasks.append(Task(exercise, submission, args.seed, root=root))
     start = time.monotonic()
-    with Pool(1, args.timeout) as pool:
-        pool.run(tasks)
+    pool.run(tasks, meanwhile=_load_report)  # the report code loads while the worker grades
     seconds = time.monotonic() - start
+    from lab.grading import report
+
     report.terminal(tasks)
     if outputs["json"]:
         report.write_json(report.gradescope(tasks, seconds), outputs["json"])
@@ -108,6 +118,12 @@ def _grade(args) -> int:
         report.write_json(result, outputs["classroom"])
     report.write_github_output(result)
     return 0 if all(t.passed for t in tasks) else 1
+
+
+def _load_report() -> None:
+    import rich.console  # noqa: F401 - the terminal report's
+
+    import lab.grading.report  # noqa: F401
 
 
 def cmd_grade_all(args) -> int:
@@ -303,6 +319,6 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_gradescope_zip)
 
     p = sub.add_parser("grade-bench", help="grading latency and grade-all throughput")
-    p.add_argument("--submissions", type=int, default=100)
+    p.add_argument("--submissions", type=int, default=200, help="students in the made-up class")
     p.add_argument("--workers", type=int, default=workers)
     p.set_defaults(func=cmd_bench)

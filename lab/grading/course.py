@@ -13,14 +13,10 @@ import hashlib
 import io
 import re
 import shutil
-import tarfile
-import urllib.error
-import urllib.request
 from pathlib import Path
 
 from lab import __version__
 from lab.errors import UsageError
-from lab.grading.exercise import ExerciseError, find_exercises, load_exercise
 from lab.resources import data_dir
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
@@ -70,6 +66,8 @@ Exercises: {names}.
 
 def _exercise_names(source: Path, wanted: list[str] | None) -> list[str]:
     """Folder names of the chosen exercises: all, or each matching a name or its NN prefix."""
+    from lab.grading.exercise import ExerciseError, find_exercises
+
     try:
         available = [e.name for e in find_exercises(source)]
     except (ExerciseError, OSError) as err:
@@ -89,6 +87,9 @@ def _exercise_names(source: Path, wanted: list[str] | None) -> list[str]:
 
 def fetch(source: str) -> tuple[str, bytes]:
     """(URL for the workflow, bytes) of a definitions archive given as a URL or a path."""
+    import urllib.error
+    import urllib.request
+
     if "://" not in source:
         path = Path(source).resolve()
         if not path.is_file():
@@ -106,6 +107,8 @@ def fetch(source: str) -> tuple[str, bytes]:
 
 def archive_members(data: bytes) -> set[str]:
     """Paths inside a .tar.gz archive below its one top folder (tar --strip-components=1)."""
+    import tarfile
+
     try:
         with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as archive:
             names = archive.getnames()
@@ -123,6 +126,8 @@ def init(
     published_url: str | None = None,
 ) -> list[str]:
     """Write the template repository into `target`; returns the exercise names."""
+    from lab.grading.exercise import load_exercise
+
     source = source or data_dir("exercises")
     names = _exercise_names(source, exercises)
     if target.exists() and any(target.iterdir()):
@@ -178,6 +183,8 @@ def workflow_settings(text: str) -> dict[str, str]:
 
 def check(target: Path) -> list[str]:
     """What is missing or wrong in a template repository (empty: complete)."""
+    from lab.grading.exercise import ExerciseError, load_exercise
+
     problems = []
     for needed in ("README.md", ".gitignore", str(WORKFLOW)):
         if not (target / needed).is_file():

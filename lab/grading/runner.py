@@ -13,6 +13,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import signal
+import sys
 import time
 import traceback
 from collections import deque
@@ -20,11 +21,15 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection, wait
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from lab.grading import kinds
-from lab.grading.checks import CheckResult, Grader
-from lab.grading.exercise import Exercise, load_exercise
-from lab.grading.explain import Explainer
+from lab.grading.result import CheckResult
+
+if TYPE_CHECKING:
+    from lab.grading.exercise import Exercise
+
+# The supervisor imports no numpy, OpenGL or grading code here: a worker forked first
+# loads them itself while the supervisor reads the exercises (two cores, both busy).
 
 RECYCLE_AFTER = 60  # tasks per worker: drops the programs compiled for old submissions
 MAX_TIMEOUTS = 2  # per task: after this many, the remaining checks are not run
@@ -97,11 +102,42 @@ def _limit(memory: int, cpu_seconds: float) -> None:
         resource.setrlimit(resource.RLIMIT_CPU, (soft, hard))
 
 
+def _prepare(job: tuple):
+    """Read the job's exercise and file, and preprocess it (no GL: runs beside the context)."""
+    from lab.grading.checks import prepare
+    from lab.grading.exercise import load_exercise
+
+    _, folder, submission, root, _, _, _ = job
+    exercise = load_exercise(folder)
+    return exercise, prepare(exercise, Path(submission), Path(root) if root else None)
+
+
 def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
     """Child: grade tasks sent over `conn`, streaming one message per check.
 
     The GL context is made first; then the worker's memory is capped, and before each task
-    its CPU time, so a compile bomb or a huge array ends this process, not the machine."""
+    its CPU time, so a compile bomb or a huge array ends this process, not the machine.
+    A first job already waiting is read and preprocessed (glslang) while the context is made.
+    """
+    from concurrent.futures import ThreadPoolExecutor
+
+    from lab.grading import kinds
+    from lab.grading.checks import Grader
+    from lab.grading.exercise import load_exercise
+    from lab.grading.explain import Explainer
+
+    early, pending = None, None
+    try:
+        pending = conn.recv() if conn.poll(0) else None
+    except (EOFError, KeyboardInterrupt):
+        return
+    if pending is not None:
+        kinds.use_packages(pending[6])
+        if cpu_seconds:
+            _limit(0, cpu_seconds)
+        executor = ThreadPoolExecutor(max_workers=1)
+        early = executor.submit(_prepare, pending)
+        executor.shutdown(wait=False)
     grader = Grader()
     grader.explainer = Explainer(grader)
     try:
@@ -112,28 +148,38 @@ def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
     if memory:
         _limit(memory, 0.0)
     while True:
-        try:
-            job = conn.recv()
-        except (EOFError, KeyboardInterrupt):
-            return
+        if pending is None:
+            try:
+                job = conn.recv()
+            except (EOFError, KeyboardInterrupt):
+                return
+        else:
+            job, pending = pending, None
         if job is None:
             return
         key, folder, submission, root, seed, skip, packages = job
         kinds.use_packages(packages)  # check kinds registered in the supervisor (plug-ins)
         if grader is None:
             conn.send(("crash", key, f"internal grader error: no OpenGL context ({detail})"))
+            early = None
             continue
         try:
-            if cpu_seconds:
-                _limit(0, cpu_seconds)
-            exercise = load_exercise(folder)
+            if early is not None:
+                exercise, prepared = early.result()
+            else:
+                if cpu_seconds:
+                    _limit(0, cpu_seconds)
+                exercise, prepared = load_exercise(folder), None
+            early = None
             root = Path(root) if root else None
-            for result in grader.run(exercise, Path(submission), seed, frozenset(skip), root):
+            results = grader.run(exercise, Path(submission), seed, frozenset(skip), root, prepared)
+            for result in results:
                 conn.send(("check", key, result))
             conn.send(("done", key, None))
         except MemoryError:
             conn.send(("crash", key, f"the shader needs more than the {memory >> 20} MB allowed"))
         except Exception as err:  # the grader must report, never die: say what broke
+            early = None
             detail = traceback.format_exception_only(type(err), err)[-1].strip()
             conn.send(("crash", key, f"internal grader error: {detail}"))
 
@@ -144,9 +190,8 @@ def start_method() -> str:
     A forked child would inherit the driver's state without its threads, so then a fork
     server, started clean, makes the workers instead.
     """
-    from lab import gl
-
-    return "forkserver" if gl.has_offscreen_context() else "fork"
+    gl = sys.modules.get("lab.gl")  # not imported: no context here (and no import cost)
+    return "forkserver" if gl is not None and gl.has_offscreen_context() else "fork"
 
 
 class _Worker:
@@ -167,6 +212,8 @@ class _Worker:
         skip = sorted(task.results)
         root = str(task.root) if task.root else ""
         exercise = str(task.exercise.folder)
+        from lab.grading import kinds
+
         job = (task.key, exercise, str(task.submission), root, task.seed, skip, kinds.packages())
         self.conn.send(job)
 
@@ -215,8 +262,15 @@ class Pool:
     def __exit__(self, *exc) -> None:
         self.close()
 
-    def run(self, tasks: list[Task], on_done: Callable[[Task], None] | None = None) -> list[Task]:
-        """Grade every task; returns them with all their checks' results filled in."""
+    def run(
+        self,
+        tasks: list[Task],
+        on_done: Callable[[Task], None] | None = None,
+        meanwhile: Callable[[], object] | None = None,
+    ) -> list[Task]:
+        """Grade every task; returns them with all their checks' results filled in.
+
+        `meanwhile` runs once the first tasks are sent (this process would only wait)."""
         queue = deque(tasks)
         for number, task in enumerate(tasks):
             task.key = task.key or str(number)
@@ -228,6 +282,9 @@ class Pool:
                     task = queue.popleft()
                     task.started = task.started or time.monotonic()
                     worker.send(task, self.timeout)
+            if meanwhile is not None:
+                meanwhile, later = None, meanwhile
+                later()
             busy = [w for w in self.workers if w is not None and w.task is not None]
             now = time.monotonic()
             ready = wait(

@@ -7,8 +7,10 @@ lab.grading.exercise builds on them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from lab.render import Light
+if TYPE_CHECKING:  # lab.render (numpy, moderngl) loads only where lights are read
+    from lab.render import Light
 
 
 class ExerciseError(ValueError):
@@ -40,6 +42,8 @@ class Check:
 
 def parse_lights(raw, where: str) -> list[Light]:
     """[[theta, phi], [theta, phi, [r, g, b]], ...] from exercise.toml."""
+    from lab.render import Light
+
     lights = []
     for item in raw:
         if not isinstance(item, list) or len(item) not in (2, 3):

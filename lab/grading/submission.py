@@ -104,13 +104,25 @@ def _limit_memory() -> None:  # runs in the child, before exec
     resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
 
 
+def capped(command: list[str]) -> tuple[list[str], object]:
+    """(command, preexec_fn) that run `command` with at most PREPROCESS_MEMORY of address
+    space. util-linux's prlimit sets the cap before the exec, and lets Python start the
+    child with vfork; a function run in a fork of this (large) process is the fallback."""
+    import resource
+
+    prlimit = shutil.which("prlimit")
+    hard = resource.getrlimit(resource.RLIMIT_AS)[1]
+    if prlimit and hard == resource.RLIM_INFINITY:
+        return [prlimit, f"--as={PREPROCESS_MEMORY}:", "--", *command], None
+    return command, _limit_memory
+
+
 def _run_capped(command: list[str], what: str, label: str) -> tuple[int, bytes, str]:
     """Run glslangValidator with a memory cap, a time limit and a cap on its output, so a
     macro bomb ends in a second with a message instead of filling memory or the disk."""
+    command, preexec = capped(command)
     with tempfile.TemporaryFile() as log:
-        process = subprocess.Popen(
-            command, stdout=subprocess.PIPE, stderr=log, preexec_fn=_limit_memory
-        )
+        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=log, preexec_fn=preexec)
         chunks, size = [], 0
         deadline = time.monotonic() + PREPROCESS_SECONDS
         with selectors.DefaultSelector() as selector:
@@ -147,10 +159,12 @@ def preprocess(code: str, label: str) -> str:
     structure: directives and comments become blank lines). Raises SourceError."""
     prelude = "#version 330 core\n" + glsl_defines().rstrip("\n") + "\n"
     skip = prelude.count("\n")
-    with tempfile.TemporaryDirectory(prefix="brdf-lab-") as folder:
-        source = Path(folder) / "submission.frag"
-        source.write_text(prelude + code, encoding="utf-8")
-        status, raw, log = _run_capped([glslang(), "-E", str(source)], "the preprocessor", label)
+    with tempfile.NamedTemporaryFile(
+        "w", suffix=".frag", prefix="brdf-lab-", encoding="utf-8"
+    ) as f:
+        f.write(prelude + code)
+        f.flush()
+        status, raw, log = _run_capped([glslang(), "-E", f.name], "the preprocessor", label)
     out = raw.decode("utf-8", "replace")
     if status != 0:
         for line_text in (log + out).splitlines():
@@ -198,12 +212,13 @@ def portability_warnings(model, label: str) -> list[str]:
         return []
     try:
         source = assemble_fragment(model, "probe", target="300es")
+        command, preexec = capped([path, "--stdin", "-S", "frag"])
         result = subprocess.run(
-            [path, "--stdin", "-S", "frag"],
+            command,
             input=source.text.encode("utf-8"),
             capture_output=True,
             timeout=PREPROCESS_SECONDS,
-            preexec_fn=_limit_memory,
+            preexec_fn=preexec,
         )
     except (OSError, ValueError, subprocess.TimeoutExpired):
         return []

@@ -3,6 +3,8 @@ the special directions where formulas divide by zero."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from lab.grading.kinds.values import ValueKind
@@ -15,9 +17,15 @@ def probe_angles(check: Check) -> np.ndarray:
 
     Half the pairs are spread over the hemisphere, 3/8 lie near the mirror direction
     (where the highlights are) and 1/8 have L or V below the horizon (must give 0).
+    The rows are made once per (seed, pairs) and shared read-only: every student's check
+    evaluates, compares and explains the same rows.
     """
-    rng = np.random.default_rng(check.seed)
-    n = check.pairs
+    return _probe_rows(int(check.seed), int(check.pairs))
+
+
+@functools.lru_cache(maxsize=256)
+def _probe_rows(seed: int, n: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
     n_mirror, n_below = 3 * n // 8, n // 8
     n_spread = n - n_mirror - n_below
     theta_i = np.degrees(np.arccos(rng.uniform(0.05, 1.0, n)))
@@ -32,7 +40,9 @@ def probe_angles(check: Check) -> np.ndarray:
     theta_i[below] = np.where(flip_light, 180.0 - theta_i[below], theta_i[below])
     theta_o[below] = np.where(flip_light, theta_o[below], 180.0 - theta_o[below])
     rows = np.stack([theta_i, phi_i % 360.0, theta_o, phi_o % 360.0], axis=1)
-    return np.concatenate([rows, special_angles(float(rng.uniform(0.0, 360.0)))])
+    table = np.concatenate([rows, special_angles(float(rng.uniform(0.0, 360.0)))])
+    table.flags.writeable = False
+    return table
 
 
 def special_angles(phi: float) -> np.ndarray:

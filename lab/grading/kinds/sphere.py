@@ -5,6 +5,7 @@ failing fraction and mean FLIP."""
 from __future__ import annotations
 
 import base64
+import hashlib
 import math
 
 import numpy as np
@@ -23,6 +24,18 @@ def share_off(check: Check, image: np.ndarray, other: np.ndarray) -> float:
     covered = image[..., 3] > 127
     diff = np.abs(image[..., :3].astype(int) - other[..., :3].astype(int)).max(axis=-1)
     return float((diff[covered] > check.threshold).mean()) if covered.any() else 0.0
+
+
+_PNGS: dict[tuple, bytes] = {}  # reference images as PNG: a class shares them
+
+
+def _reference_png(reference: np.ndarray) -> bytes:
+    key = (reference.shape, hashlib.blake2b(reference.tobytes(), digest_size=16).digest())
+    if key not in _PNGS:
+        if len(_PNGS) > 64:
+            _PNGS.clear()
+        _PNGS[key] = png(reference[..., :3])
+    return _PNGS[key]
 
 
 class SphereKind(CheckKind):
@@ -81,15 +94,14 @@ class SphereKind(CheckKind):
         flip = (
             mean_flip(reference[..., :3], student8) if failing.any() or diff.max() >= 1.0 else 0.0
         )
-        # the channel that is off the most, with its sign: too bright or too dark
-        pick = np.take_along_axis(delta, np.abs(delta).argmax(axis=-1)[..., None], axis=-1)[..., 0]
-        signed = np.where(bad, 255.0, pick)
-        images = {
-            "reference": png(reference[..., :3]),
-            "student": png(shown),
-            "difference": png(signed_difference(signed, covered, check.threshold)),
-            "failing pixels": png(failing_overlay(reference, failing)),
-        }
+        fails = bool(bad.any()) or fraction > check.max_fraction
+        images = {"reference": _reference_png(reference), "student": png(shown)}
+        if fails:  # the report shows the difference images of a failed check only
+            # the channel that is off the most, with its sign: too bright or too dark
+            pick = np.take_along_axis(delta, np.abs(delta).argmax(axis=-1)[..., None], axis=-1)
+            signed = np.where(bad, 255.0, pick[..., 0])
+            images["difference"] = png(signed_difference(signed, covered, check.threshold))
+            images["failing pixels"] = png(failing_overlay(reference, failing))
         extra = {"images": images, "flip": flip, "threshold": check.threshold}
         summary = (
             f"{100 * fraction:.2f}% of pixels off by more than {check.threshold:g}/255 "
