@@ -121,8 +121,6 @@ def _grade_with(pool, args) -> int:
 
 
 def _load_report() -> None:
-    import rich.console  # noqa: F401 - the terminal report's
-
     import lab.grading.report  # noqa: F401
 
 

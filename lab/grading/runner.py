@@ -126,12 +126,13 @@ def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
     from lab.grading.exercise import load_exercise
     from lab.grading.explain import Explainer
 
-    early, pending = None, None
+    early, pending = None, ()  # () : no job read ahead
     try:
-        pending = conn.recv() if conn.poll(0) else None
+        if conn.poll(0):
+            pending = conn.recv()
     except (EOFError, KeyboardInterrupt):
         return
-    if pending is not None:
+    if pending:
         kinds.use_packages(pending[6])
         if cpu_seconds:
             _limit(0, cpu_seconds)
@@ -148,13 +149,13 @@ def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
     if memory:
         _limit(memory, 0.0)
     while True:
-        if pending is None:
+        if pending == ():
             try:
                 job = conn.recv()
             except (EOFError, KeyboardInterrupt):
                 return
         else:
-            job, pending = pending, None
+            job, pending = pending, ()
         if job is None:
             return
         key, folder, submission, root, seed, skip, packages = job
