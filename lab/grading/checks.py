@@ -32,6 +32,7 @@ from lab.grading.exercise import (
     Exercise,
     SubmissionError,
     build_model,
+    header_notes,
     read_submission,
     wrapper_origin,
 )
@@ -218,8 +219,10 @@ class Grader:
                         "lights": [(lt.theta, lt.phi) for lt in check.lights],
                         "probe_seed": check.seed,
                     }
+            if index == todo[0][0]:  # header lines the grader put back, named once
+                result.warnings = header_notes(exercise, submission, code)
             if index == todo[-1][0]:
-                result.warnings = portable.result()
+                result.warnings = result.warnings + portable.result()
             yield result
 
     def grade(

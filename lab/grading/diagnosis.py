@@ -230,11 +230,16 @@ def _half_width(theta: np.ndarray, values: np.ndarray) -> float:
     return float(theta[above[-1]] - theta[above[0]]) or 1.0
 
 
+def _listed(names: list[str]) -> str:
+    """'D', 'D and G', 'diffuse, D and G'."""
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+
+
 def terms_sentence(wrong: list[str], right: list[str], detail: str) -> str:
     """'the specular term is wrong (the diffuse term is right): every value ...'."""
-    text = f"the {' and '.join(wrong)} term{'s are' if len(wrong) > 1 else ' is'} wrong"
+    text = f"the {_listed(wrong)} term{'s are' if len(wrong) > 1 else ' is'} wrong"
     if right:
-        text += f" (the {' and '.join(right)} term{'s are' if len(right) > 1 else ' is'} right)"
+        text += f" (the {_listed(right)} term{'s are' if len(right) > 1 else ' is'} right)"
     return text + (f": {detail}" if detail else "")
 
 

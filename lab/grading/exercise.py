@@ -234,9 +234,52 @@ def build_model(exercise: Exercise, path: Path, code: str) -> Model:
                 f"{where}: {what} in the header; put back the stub's line "
                 f"'{param.header_line()}' (the grader sets this parameter)"
             )
-        if mine.default != param.default:  # a default changed to try things out costs nothing
-            model.params[name] = replace(mine, default=param.default)
+        if header_changes(param, mine):  # tried out: costs nothing, the stub's line counts
+            model.params[name] = replace(
+                mine,
+                default=param.default,
+                minimum=param.minimum,
+                maximum=param.maximum,
+                scale=param.scale,
+            )
     return model
+
+
+def header_notes(exercise: Exercise, path: Path, code: str) -> list[str]:
+    """Header lines whose default or range a submission changed, in words: the grader uses
+    the stub's (build_model), and says so ([] when unchanged or unreadable)."""
+    try:
+        stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
+        mine = parse_model(code.lstrip("\ufeff"), path)
+    except (ModelError, OSError):
+        return []
+    notes = []
+    for name, param in stub.params.items():
+        other = mine.params.get(name)
+        for change in header_changes(param, other) if other is not None else []:
+            where = f"{label_of(path)}:{other.line}" if other.line else label_of(path)
+            notes.append(
+                f"{where}: you changed {change} in the header; the grader uses the stub's "
+                f"line '{param.header_line()}'"
+            )
+    return notes
+
+
+def header_changes(stub: Param, mine: Param) -> list[str]:
+    """What a submission changed in a header line that the grader can put back."""
+    changes = []
+    if mine.default != stub.default:
+        changes.append(
+            f"the default of {stub.name} from {_shown(stub.default)} to {_shown(mine.default)}"
+        )
+    if (mine.minimum, mine.maximum) != (stub.minimum, stub.maximum) and stub.kind != "enum":
+        changes.append(
+            f"the range of {stub.name} from [{stub.minimum:g}, {stub.maximum:g}] to "
+            f"[{mine.minimum:g}, {mine.maximum:g}]"
+        )
+    if mine.scale != stub.scale and stub.kind == "float":
+        changes.append(f"the slider scale of {stub.name} from {stub.scale} to {mine.scale}")
+    return changes
 
 
 def header_edit(stub: Param, mine: Param | None) -> str:
@@ -248,6 +291,13 @@ def header_edit(stub: Param, mine: Param | None) -> str:
     if mine.choices != stub.choices:
         return f"you changed the choices of {stub.name}"
     return ""
+
+
+def _shown(value) -> str:
+    """A header value as written: 0.5, 0.1,0.1,0.1, beckmann, True."""
+    if isinstance(value, tuple):
+        return ",".join(f"{c:g}" for c in value)
+    return f"{value:g}" if isinstance(value, float) else str(value)
 
 
 def wrapper_origin(exercise: Exercise, code: str, file: str, line: int) -> tuple[str, int]:

@@ -68,12 +68,29 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
     for check in exercise.checks:
         if not kind_of(check).diagnose_terms:
             continue
-        for name, overrides in terms.items():
-            term_check = replace(check, params={**check.params, **overrides})
-            values[f"{check.name}|term.{name}"] = render(grader.renderer, model, term_check)
+        for name, spec in terms.items():
+            params, defines, _ = mistakes.term_parts(spec)
+            term_check = replace(check, params={**check.params, **params})
+            term_model = mistakes.with_defines(model, defines)
+            values[f"{check.name}|term.{name}"] = render(grader.renderer, term_model, term_check)
     folder = exercise.references
     np.savez_compressed(folder / mistakes.VALUES, **values)
     return [folder / mistakes.VALUES, mistakes.write_hints(exercise, hints, terms)]
+
+
+def _finest(wrong: list[str], right: list[str], parent: dict[str, str]):
+    """The terms to name: a term's factors (D, G, F within "specular") where some of them
+    are right; the term itself where all are wrong (what they share is wrong); a right
+    term's factors go unsaid."""
+    for whole in {p for p in parent.values() if p}:
+        parts = [t for t, p in parent.items() if p == whole]
+        if whole in right:
+            right = [t for t in right if t not in parts]
+        elif whole in wrong and parts and all(t in wrong for t in parts):
+            wrong = [t for t in wrong if t not in parts]
+        elif whole in wrong:
+            wrong = [t for t in wrong if t != whole]
+    return wrong, right
 
 
 def _variant_model(exercise: Exercise, variant: mistakes.Variant, solution: str) -> Model | None:
@@ -91,6 +108,17 @@ class Explainer:
         self.grader = grader
         self._stored: dict[Path, dict[str, np.ndarray]] = {}
         self._models: dict[tuple[Path, str], Model | None] = {}
+        self._variants: dict[Path, list[mistakes.Variant]] = {}
+        self._solution_code: dict[Path, str] = {}
+
+    def variants(self, exercise: Exercise) -> list[mistakes.Variant]:
+        """Known mistakes and single-edit mutants of the solution (hidden mode renders
+        them live), made once per worker."""
+        path = exercise.solution
+        if path not in self._variants:
+            self._solution_code[path] = path.read_text(encoding="utf-8")
+            self._variants[path] = mistakes.variants(exercise, self._solution_code[path])
+        return self._variants[path]
 
     def stored(self, exercise: Exercise) -> dict[str, np.ndarray]:
         folder = exercise.references
@@ -103,8 +131,14 @@ class Explainer:
                 self._stored[folder] = {}
         return self._stored[folder]
 
-    def candidates(self, exercise: Exercise, check: Check, live: bool) -> dict[str, np.ndarray]:
-        """The variants' values for this check: stored, or (hidden mode) rendered now."""
+    def candidates(
+        self, exercise: Exercise, check: Check, live: bool, model: Model | None = None
+    ) -> dict[str, np.ndarray]:
+        """The variants' values for this check: stored, or (hidden mode) rendered now.
+
+        Hidden mode renders live only the variant (known mistake or generated mutant) that
+        the student's program matches at the check's committed settings, where the stored
+        values are: one compile, not one per variant, within grade-bench's budget."""
         if not live:
             prefix = f"{check.name}|"
             return {
@@ -112,21 +146,33 @@ class Explainer:
                 for k, v in self.stored(exercise).items()
                 if k.startswith(prefix) and not k.startswith(prefix + "term.")
             }
-        found = {}
-        solution = exercise.solution.read_text(encoding="utf-8")
-        for variant in mistakes.known_mistakes(exercise):
-            key = (exercise.solution, variant.key)
-            if key not in self._models:
-                self._models[key] = _variant_model(exercise, variant, solution)
-            model = self._models[key]
-            if model is not None:
-                try:
-                    found[variant.key] = expected_value(
-                        render(self.grader.renderer, model, check), check
-                    )
-                except (ShaderCompileError, ModelError):
-                    continue
-        return found
+        original = next((c for c in exercise.checks if c.name == check.name), None)
+        kept = mistakes.read_hints(exercise)  # the variants the references kept
+        stored = self.candidates(exercise, original, False) if original else {}
+        stored = {k: v for k, v in stored.items() if k in kept}
+        if not stored or model is None:
+            return {}
+        kind = kind_of(original)
+        try:
+            mine = kind.stored(render(self.grader.renderer, model, original), original)
+            want = self.grader.expected(exercise, original, live=False)
+        except (ShaderCompileError, ModelError, OSError, KeyError):
+            return {}
+        key = kind.nearest(original, mine, want, stored)
+        variant = next((v for v in self.variants(exercise) if v.key == key), None)
+        if variant is None:
+            return {}
+        cached = (exercise.solution, variant.key)
+        if cached not in self._models:
+            solution = self._solution_code[exercise.solution]
+            self._models[cached] = _variant_model(exercise, variant, solution)
+        if self._models[cached] is None:
+            return {}
+        try:
+            raw = render(self.grader.renderer, self._models[cached], check)
+        except (ShaderCompileError, ModelError):
+            return {}
+        return {variant.key: expected_value(raw, check)}
 
     def explain(
         self,
@@ -143,7 +189,7 @@ class Explainer:
         got = kind.stored(raw, check)  # the form of the reference and the variants' values
         candidates = {
             k: v
-            for k, v in self.candidates(exercise, check, live).items()
+            for k, v in self.candidates(exercise, check, live, model).items()
             if k in hints and (not live or kind.differs(check, v, expected))
         }
         key = kind.nearest(check, got, expected, candidates)
@@ -154,31 +200,41 @@ class Explainer:
     def terms(
         self, exercise: Exercise, check: Check, model: Model, angles: np.ndarray, live: bool
     ) -> str:
-        """Evaluate each declared term alone; name the wrong one and the shape of its error."""
+        """Evaluate each declared term alone; name the wrong one and the shape of its error.
+
+        A term seen through macros (D with G and F made 1) counts only where the student's
+        code calls what the macros replace."""
         terms = mistakes.read_terms(exercise)
         if len(terms) < 2:
             return ""
-        wrong, right, detail = [], [], ""
-        for name, overrides in terms.items():
-            term_check = replace(check, params={**check.params, **overrides})
+        wrong, right, detail, parent = [], [], {}, {}
+        for name, spec in terms.items():
+            params, defines, within = mistakes.term_parts(spec)
+            if defines and not mistakes.calls_all(model.code, defines):
+                continue
+            parent[name] = within
+            term_check = replace(check, params={**check.params, **params})
             if live:
-                solution = self.grader.solution_model(exercise)
+                solution = mistakes.with_defines(self.grader.solution_model(exercise), defines)
                 want = render(self.grader.renderer, solution, term_check)
             else:
                 want = self.stored(exercise).get(f"{check.name}|term.{name}")
                 if want is None:
                     return ""
-            mine = render(self.grader.renderer, model, term_check)
+            mine = render(self.grader.renderer, mistakes.with_defines(model, defines), term_check)
             if diagnosis.within(check, mine, want, slack=1.0).all():
                 right.append(name)
             else:
                 wrong.append(name)
-                detail = detail or diagnosis.shape(term_check, angles, want, mine)
-                if not detail:
-                    detail = kind_of(check).lobe(term_check, angles, want, mine)
+                detail[name] = diagnosis.shape(term_check, angles, want, mine) or kind_of(
+                    check
+                ).lobe(term_check, angles, want, mine)
+        wrong, right = _finest(wrong, right, parent)
         if not wrong or not right:
             return ""
-        return diagnosis.terms_sentence(wrong, right, detail if len(wrong) == 1 else "")
+        return diagnosis.terms_sentence(
+            wrong, right, detail.get(wrong[0], "") if len(wrong) == 1 else ""
+        )
 
     def swaps(self, check: Check, model: Model, angles: np.ndarray, expected) -> str:
         """L and V exchanged, or the tangent axes X and Y: render the swap and compare."""

@@ -19,7 +19,7 @@ from __future__ import annotations
 import json
 import re
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from lab.grading.exercise import Exercise, ExerciseError
@@ -202,8 +202,35 @@ def variants(exercise: Exercise, code: str) -> list[Variant]:
     return known_mistakes(exercise) + mutants(code)
 
 
+def term_parts(spec: dict) -> tuple[dict, tuple[str, ...], str]:
+    """A declared term's (parameter settings, GLSL macros, the term it is part of).
+
+    Settings switch other terms off (`kd = [0, 0, 0]`); `define` lists macros that make
+    the wrapper's or library's other functions neutral (`"G_vgroove(a, b, c, d) 1.0"`), so a
+    term such as D is seen alone through the code that calls it; `within` names the term
+    it is a factor of (D, G and F within "specular").
+    """
+    params = {k: v for k, v in spec.items() if k not in ("define", "within")}
+    return params, tuple(str(d) for d in spec.get("define", ())), str(spec.get("within", ""))
+
+
+def with_defines(model, defines: tuple[str, ...]):
+    """The model with `#define` lines in front of its code (after the library includes)."""
+    if not defines:
+        return model
+    lines = "".join(f"#define {d}\n" for d in defines)
+    return replace(model, code=lines + model.code)
+
+
+def calls_all(code: str, defines: tuple[str, ...]) -> bool:
+    """Does `code` call every function the macros replace? Else they would not isolate the
+    term in it (a student who wrote G inline), and the term says nothing."""
+    names = [d.split("(", 1)[0].strip() for d in defines]
+    return all(re.search(rf"\b{re.escape(n)}\s*\(", code) for n in names)
+
+
 def declared_terms(exercise: Exercise) -> dict[str, dict]:
-    """The terms an exercise can show alone, as parameter settings (`[terms]` in the list)."""
+    """The terms an exercise can show alone (`[terms]` in the list; see term_parts)."""
     path = mistakes_file(exercise)
     if not path.is_file():
         return {}
