@@ -85,9 +85,12 @@ def exercise_entry(exercise: Exercise) -> dict:
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
         "hints": hints,  # the grader's hint of each stored mistake (references/diagnosis.json)
+        # Terms seen through macros (09's D, G, F) need a recompile the page does not do:
+        # it judges the terms that parameter settings alone show.
         "terms": {
             k: {n: list(v) if isinstance(v, tuple) else v for n, v in t.items()}
             for k, t in mistakes.read_terms(exercise).items()
+            if "define" not in t
         },
     }
 
