@@ -9,7 +9,15 @@ from PIL import Image
 
 from lab.ibl import environments
 from lab.ibl.bench import relative_rms
-from lab.ibl.chisquare import chi_square, pdf_integral
+from lab.ibl.chisquare import (
+    bin_probabilities,
+    chi_square,
+    histogram,
+    pdf_integral,
+    random_frame,
+    sidak,
+    view_direction,
+)
 from lab.ibl.furnace import furnace
 from lab.ibl.integrator import (
     STRATEGIES,
@@ -40,12 +48,36 @@ def ibl(ctx):
     return IBLRenderer(ctx)
 
 
-@pytest.mark.parametrize("theta_v", [10.0, 50.0])
+@pytest.mark.parametrize("theta_v", [10.0, 50.0, 70.0, 89.0])
 @pytest.mark.parametrize("name", sorted(SAMPLED))
 def test_sampler_chi_square(ibl, name, theta_v):
-    """200k samples binned over the sphere match the pdf (Pearson, fixed seed)."""
-    result = chi_square(ibl, name, SAMPLED[name], theta_v, seed=7)
-    assert result.p_value > 0.001, (name, theta_v, result)
+    """200k samples binned over the sphere match the pdf (Pearson, fixed seed), up to
+    grazing views, in a shading frame turned away from the axes; one significance level
+    for the 4 views together (Šidák)."""
+    frame = random_frame(int(theta_v))
+    result = chi_square(ibl, name, SAMPLED[name], theta_v, seed=7, frame=frame)
+    assert result.p_value > sidak(0.004, 4), (name, theta_v, result)
+
+
+def test_bin_probabilities_near_the_half_vector_singularity(ibl):
+    """At a grazing view, the bins around L = -V (where p_h / (4 V.H) diverges) hold what a
+    float64 simulation of the half-vector map puts there: the cause of the chi-square
+    failures at 70 degrees and beyond, which a fixed midpoint rule underestimated by 30%."""
+    ke, V = 40.0, view_direction(89.0)
+    rng = np.random.default_rng(1)
+    n = 2_000_000
+    cos_h = rng.random(n) ** (1.0 / (ke + 1.0))
+    sin_h, phi = np.sqrt(1.0 - cos_h**2), 2.0 * np.pi * rng.random(n)
+    H = np.stack([sin_h * np.cos(phi), sin_h * np.sin(phi), cos_h], axis=1)
+    VoH = H @ V
+    L = 2.0 * VoH[:, None] * H - V
+    truth = histogram(L[VoH > 0.0]) / n
+    values = {"ke": ke, "kd": (0.0, 0.0, 0.0)}
+    expected = bin_probabilities(ibl, "blinn_phong", values, V)
+    singular = expected[9, 19:21]  # cos theta in [-0.1, 0], phi beside pi: L = -V is there
+    # within 3%: float32 rounding of L + V near L = -V on the GPU; the old rule missed 29%
+    assert singular == pytest.approx(truth[9, 19:21], rel=0.03)
+    assert expected.sum() == pytest.approx(truth.sum(), abs=0.002)
 
 
 @pytest.mark.parametrize("name", sorted(SAMPLED))

@@ -129,6 +129,15 @@ class Environment:
         self._textures.clear()
 
 
+def frame_uniforms(frame=None) -> dict:
+    """u_X, u_Y, u_N of the sample and pdf views from a 3x3 frame (rows X, Y, N)."""
+    rows = np.eye(3) if frame is None else np.asarray(frame, np.float64).reshape(3, 3)
+    return {
+        name: tuple(float(c) for c in row)
+        for name, row in zip(("u_X", "u_Y", "u_N"), rows, strict=True)
+    }
+
+
 class IBLRenderer(Renderer):
     """A Renderer that also knows the IBL views (it inserts each model's sampler)."""
 
@@ -169,18 +178,22 @@ class IBLRenderer(Renderer):
         return self.program(model, view, enums, sampler_key(model))
 
     # -- BRDF samples, for the chi-square tests and the grader ---------------------------
-    def brdf_samples(self, model, values, V, seed: int = 1) -> np.ndarray:
-        """One BRDF sample per row of V (n, 3) (local frame, N = z): (n, 4) = L and pdf."""
+    def brdf_samples(self, model, values, V, seed: int = 1, frame=None) -> np.ndarray:
+        """One BRDF sample per row of V (n, 3), local coordinates (N = z): (n, 4) = L in
+        local coordinates and its pdf. `frame` (3x3 rows X, Y, N) is the shading frame the
+        sampler sees (default the axes)."""
         model = as_model(model)
         V = np.asarray(V, np.float32).reshape(-1, 3)
-        return self._texel_pass(model, values, "ibl_sample", [V], {"u_V": 0, "u_seed": seed})
+        uniforms = {"u_V": 0, "u_seed": seed, **frame_uniforms(frame)}
+        return self._texel_pass(model, values, "ibl_sample", [V], uniforms)
 
-    def brdf_pdf(self, model, values, L, V) -> np.ndarray:
-        """PDF_BRDF (n,) for direction pairs (local frame, N = z)."""
+    def brdf_pdf(self, model, values, L, V, frame=None) -> np.ndarray:
+        """PDF_BRDF (n,) for direction pairs in local coordinates (N = z)."""
         model = as_model(model)
         L = np.asarray(L, np.float32).reshape(-1, 3)
         V = np.broadcast_to(np.asarray(V, np.float32).reshape(-1, 3), L.shape)
-        return self._texel_pass(model, values, "ibl_pdf", [L, V], {"u_L": 0, "u_V": 1})[:, 0]
+        uniforms = {"u_L": 0, "u_V": 1, **frame_uniforms(frame)}
+        return self._texel_pass(model, values, "ibl_pdf", [L, V], uniforms)[:, 0]
 
     def _texel_pass(self, model: Model, values, view: str, inputs, uniforms) -> np.ndarray:
         n = len(inputs[0])
