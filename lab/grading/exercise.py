@@ -43,6 +43,7 @@ class Exercise:
     wrapper: str | None = None  # library model that calls the student's term functions
     replaces: str | None = None  # the library term file the student's file stands in for
     loop_limit: int = LOOP_LIMIT  # iterations per loop and invocation before the guard stops it
+    sampler_for: str | None = None  # a library model whose BRDF sampler the student writes
 
     @property
     def name(self) -> str:
@@ -97,6 +98,7 @@ def load_exercise(folder: str | Path) -> Exercise:
             wrapper=spec.get("wrapper"),
             replaces=spec.get("replaces"),
             loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
+            sampler_for=spec.get("sampler_for"),
         )
     except (KeyError, TypeError) as err:
         raise ExerciseError(f"{spec_path}: missing or malformed entry {err}") from None
@@ -204,6 +206,8 @@ def build_model(exercise: Exercise, path: Path, code: str) -> Model:
     include of the term file it replaces is dropped.
     """
     label = label_of(path)
+    if exercise.sampler_for:
+        return sampler_model(exercise, path, code)
     stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
     try:
         check_directives(code, label, stub.includes)
@@ -280,6 +284,24 @@ def header_changes(stub: Param, mine: Param) -> list[str]:
     if mine.scale != stub.scale and stub.kind == "float":
         changes.append(f"the slider scale of {stub.name} from {stub.scale} to {mine.scale}")
     return changes
+
+
+def sampler_model(exercise: Exercise, path: Path, code: str) -> Model:
+    """A sampling exercise: the library model, with the student's file as its sampler."""
+    from lab.ibl.integrator import LOBE_SAMPLER
+
+    label = label_of(path)
+    try:
+        check_directives(code, label, [])
+        compiled = preprocess(code, label)
+        check_functions(compiled, exercise.functions, label)
+        model = replace(load_model(exercise.sampler_for))
+    except (ModelError, SourceError) as err:
+        raise SubmissionError(str(err)) from None
+    model.sampler_path = path
+    model.sampler_code = compiled.rstrip("\n") + "\n" + LOBE_SAMPLER
+    model.loop_limit = exercise.loop_limit
+    return model
 
 
 def header_edit(stub: Param, mine: Param | None) -> str:

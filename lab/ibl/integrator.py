@@ -36,6 +36,13 @@ IBL_VIEWS = ("ibl", "ibl_sample", "ibl_pdf")
 NO_SAMPLER = """const bool HAS_SAMPLER = false;
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }"""
+# An exercise's sampler file defines sample_lobe and pdf_lobe; these lines make it the
+# model's sampler (lab.grading.exercise appends them to the student's code).
+LOBE_SAMPLER = """
+const bool HAS_SAMPLER = true;
+vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return sample_lobe(u.xy, V, N, X, Y); }
+float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N, X, Y); }
+"""
 ENV_UNIT = 8  # texture units 8..11 hold the environment (models' own data binds lower units)
 
 
@@ -50,11 +57,19 @@ def sampler_path(model: Model):
     return path if model.path.parent.resolve() == (SHADER_DIR / "brdfs").resolve() else None
 
 
+def sampler_text(model: Model) -> str | None:
+    """The sampler's GLSL: an exercise's model carries it (`sampler_code`), else its file."""
+    code = getattr(model, "sampler_code", None)
+    if code is not None:
+        return code
+    path = sampler_path(model)
+    return path.read_text(encoding="utf-8") if path is not None else None
+
+
 def sampler_key(model: Model) -> str:
     """A comment line naming the sampler's text, so the program cache tells samplers apart."""
-    path = sampler_path(model)
-    text = path.read_text(encoding="utf-8") if path is not None else ""
-    return f"// sampler {path} {hashlib.sha1(text.encode()).hexdigest()[:12]}"
+    text = sampler_text(model) or ""
+    return f"// sampler {sampler_path(model)} {hashlib.sha1(text.encode()).hexdigest()[:12]}"
 
 
 def fallback(model: Model, strategy: str) -> str | None:
@@ -145,7 +160,7 @@ class IBLRenderer(Renderer):
         vertex, source = super()._assemble(model, view, enums, preamble)
         if view in IBL_VIEWS:
             path = sampler_path(model)
-            text = path.read_text(encoding="utf-8") if path is not None else NO_SAMPLER
+            text = sampler_text(model) or NO_SAMPLER
             label = glsl.label_of(path) if path is not None else "<no sampler>"
             insert_before_view(source, view, text, label)
             terms = SAMPLING_TERMS.read_text(encoding="utf-8")
