@@ -176,7 +176,7 @@ def judge_pdf_integral(raw, reference, views, tolerance: float) -> tuple[bool, s
     )
 
 
-# -- the render at equal samples ---------------------------------------------------------------------
+# -- the render at equal samples ---------------------------------------------------------
 def environment(name: str) -> Environment:
     if name not in _ENVIRONMENTS:
         _ENVIRONMENTS[name] = Environment.load(name)
