@@ -153,6 +153,37 @@ CORPUS = [
     ),
     ("09_cook_torrance", "4 N.L N.V", [("PI * NoL * NoV", "4.0 * NoL * NoV")], "4·N·L·N·V"),
     ("09_cook_torrance", "no 1/pi", [("kd * INV_PI", "kd")], "1/π"),
+    (
+        "10_importance_sampling",
+        "no Jacobian",
+        [
+            (
+                "if (VoH <= 0.0) return 0.0;\n    return pdf_half_vector(H, N) / (4.0 * VoH);",
+                "return VoH > 0.0 ? pdf_half_vector(H, N) : 0.0;",
+            )
+        ],
+        "Jacobian",
+    ),
+    ("10_importance_sampling", "exponent", [("1.0 / (ke + 1.0)", "1.0 / (2.0 + ke)")], "exponent"),
+    (
+        "10_importance_sampling",
+        "no sqrt",
+        [("sqrt(max(1.0 - cos_t * cos_t, 0.0))", "max(1.0 - cos_t * cos_t, 0.0)")],
+        "square root",
+    ),
+    (
+        "10_importance_sampling",
+        "local frame",
+        [("return h.x * X + h.y * Y + h.z * N;", "return vec3(h.x, h.y, h.z);")],
+        "local frame",
+    ),
+    (
+        "10_importance_sampling",
+        "reflect sign",
+        [("return reflect(-V, H);", "return V - 2.0 * dot(V, H) * H;")],
+        "reflect",
+    ),
+    ("10_importance_sampling", "half circle", [("2.0 * PI * u.y", "u.y * PI")], "whole circle"),
     # not in any mistake list: only the shape of the error can tell
     ("02_phong", "exponent doubled", [("pow(RoV, ke)", "pow(RoV, 2.0 * ke)")], "exponent of about"),
     ("03_blinn_phong", "pi on ks", [("ks * pow(NoH, ke)", "PI * ks * pow(NoH, ke)")], "π times"),
@@ -171,6 +202,10 @@ EQUIVALENT = [
     ),
     ("08_fresnel", [("(k2 * k2 * k)", "pow(k, 5.0)")]),
     ("09_cook_torrance", [("kd * INV_PI", "kd / PI")]),
+    (
+        "10_importance_sampling",
+        [("return h.x * X + h.y * Y + h.z * N;", "return to_world(h, X, Y, N);")],
+    ),
 ]
 
 

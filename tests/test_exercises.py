@@ -131,6 +131,19 @@ MISTAKES = [
     ("09_cook_torrance", "diffuse without 1/pi", "kd * INV_PI +", "kd +"),
     ("09_cook_torrance", "Fresnel of N.V", "fresnel_F(VoH)", "fresnel_F(NoV)"),
     ("09_cook_torrance", "H not normalized", "normalize(L + V)", "(L + V)"),
+    ("10_importance_sampling", "pdf without its Jacobian", "/ (4.0 * VoH)", ""),
+    (
+        "10_importance_sampling",
+        "half vector left local",
+        "return h.x * X + h.y * Y + h.z * N;",
+        "return h;",
+    ),
+    (
+        "10_importance_sampling",
+        "no square root",
+        "sqrt(max(1.0 - cos_t * cos_t, 0.0))",
+        "(1.0 - cos_t * cos_t)",
+    ),
 ]
 
 REWRITES = [
@@ -159,6 +172,7 @@ REWRITES = [
         "ks * F * (D * G / (PI * NoL * NoV))",
         "ks * F * D * G * INV_PI / (NoL * NoV)",
     ),
+    ("10_importance_sampling", "pow(max(u.x, 1e-30)", "pow(max(1.0 - u.x, 1e-30)"),
 ]
 
 HIDDEN_SEED = 7
@@ -237,7 +251,10 @@ def test_every_exercise_has_the_files_of_its_handout():
         assert exercise.solution.is_file() and "TODO" not in exercise.solution.read_text()
         assert exercise.max_points == 10
         kinds = {c.kind for c in exercise.checks}
-        assert "probe" in kinds and "sphere" in kinds
+        if exercise.sampler_for:  # a sampler: its distribution, its pdf, its renders
+            assert {"chi_square", "pdf_integral", "ibl_render"} <= kinds, exercise.name
+        else:
+            assert "probe" in kinds and "sphere" in kinds
         assert all(c.pairs >= 256 for c in exercise.checks if c.kind == "probe")
 
 

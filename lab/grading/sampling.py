@@ -114,7 +114,9 @@ def judge_chi_square(raw, views, samples: int, alpha: float) -> tuple[bool, str,
             )
         worst = index if worst < 0 else worst
     if lines:
-        return False, "; ".join(lines), worst
+        more = len(lines) - 1
+        tail = f" (and {more} more view{'s' if more > 1 else ''} fail)" if more else ""
+        return False, lines[0] + tail, worst
     tested = ", ".join(f"{t:.0f}°" for t, _ in views)
     return True, f"samples follow the pdf at every view (θ = {tested}; p ≥ {level:.2g})", -1
 
@@ -262,6 +264,4 @@ def ring_deviation(image: np.ndarray, reference: np.ndarray) -> float:
     return float(np.max(np.abs(mine - theirs) / scale))
 
 
-def same_render(a: np.ndarray, b: np.ndarray, tolerance: float = 0.05) -> bool:
-    """Two estimators alike: their converged images agree ring by ring."""
-    return a.shape == b.shape and ring_deviation(a[1], b[1]) <= tolerance
+SAME_RENDER = 0.05  # two estimators whose converged rings agree this well count as alike

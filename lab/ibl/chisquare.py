@@ -25,7 +25,7 @@ from lab.ibl.integrator import IBLRenderer
 THETA_BINS, PHI_BINS = 20, 40
 MIN_EXPECTED = 5.0
 SUB = 8  # cells per bin side before refinement
-TOLERANCE = 2e-8  # a cell is done when halving it changes its probability less than this
+TOLERANCE = 1e-7  # a cell is done when halving it changes its probability less than this
 MAX_LEVELS = 16
 MAX_CELLS = 400_000  # cells refined at once (more are accepted as they are)
 CHUNK = 4 << 20  # pdf evaluations per GPU pass
@@ -83,9 +83,9 @@ def _near(c0, p0, dc, dp, apex, reach: float = 2.0) -> np.ndarray:
     midpoints there can all miss the thin wedge of mass that ends in it, so these cells
     are always refined (down to MAX_LEVELS)."""
     c, p = apex
+    if abs(c) > 0.999:  # V along N: the half vectors normal to V lie on the horizon, where
+        return np.zeros(c0.shape, bool)  # p_h is 0, and every phi would count as near
     near_c = np.abs(c0 + dc / 2 - c) < (reach + 0.5) * dc
-    if abs(c) > 0.999:  # at a pole every phi is near
-        return near_c
     d_phi = np.abs((p0 + dp / 2 - p + math.pi) % (2.0 * math.pi) - math.pi)
     return near_c & (d_phi < (reach + 0.5) * dp)
 

@@ -1,0 +1,37 @@
+"""What the three sampling kinds (chi_square, pdf_integral, ibl_render) share: their
+`views` option, checked, and the directions they test (lab.grading.sampling does the
+numbers)."""
+
+from __future__ import annotations
+
+from lab.grading import sampling
+from lab.grading.kinds import CheckKind
+from lab.grading.spec import Check, ExerciseError
+
+
+class SampledKind(CheckKind):
+    """A kind that runs the model's BRDF sampler and pdf (an exercise with sampler_for)."""
+
+    order = 50
+
+    def validate(self, check: Check, where: str) -> None:
+        views = check.options.get("views")
+        if views is None:
+            return
+        for view in views:
+            ok = isinstance(view, list) and len(view) == 2
+            ok = ok and all(isinstance(v, (int, float)) for v in view) and 0 <= view[0] < 90
+            if not ok:
+                raise ExerciseError(
+                    f"{where}: check {check.name}: views = {views!r}: each view is "
+                    "[theta, phi] in degrees with 0 <= theta < 90, e.g. views = [[10.0, 0.0]]"
+                )
+        if not 0.0 <= check.theta_i < 90.0:
+            raise ExerciseError(f"{where}: check {check.name}: theta_i must lie in [0, 90)")
+
+    def views(self, check: Check) -> list[tuple[float, float]]:
+        """The declared views and the check's (theta_i, phi_i), random in hidden mode."""
+        return sampling.views_of(check.options["views"], check.theta_i, check.phi_i)
+
+    def where(self, check: Check, x: int, y: int) -> str:
+        return f"sample {y * 1024 + x}"
