@@ -52,7 +52,7 @@ def course(tmp: Path, samples: object = 48) -> Path:
 
 
 def test_the_lab_kinds_are_registered():
-    assert kinds.names() == ("probe", "sphere", "polar")
+    assert kinds.names() == ("probe", "sphere", "polar", "chi_square", "pdf_integral", "ibl_render")
 
 
 def test_an_unregistered_kind_is_named_in_a_clear_error(tmp_path):

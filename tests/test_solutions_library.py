@@ -17,7 +17,8 @@ from lab.grading.exercise import find_exercises
 from lab.models import MODEL_DIR, load_model
 
 ROOT = Path(__file__).resolve().parent.parent
-EXERCISES = find_exercises(ROOT / "exercises")
+EXERCISES = [e for e in find_exercises(ROOT / "exercises") if not e.sampler_for]
+SAMPLERS = [e for e in find_exercises(ROOT / "exercises") if e.sampler_for]
 
 
 def library_model(exercise):
@@ -65,3 +66,26 @@ def test_solution_matches_library(exercise, grader):
                 f"(θi, φi, θo, φo) = {angles[row].round(2).tolist()}: solution "
                 f"{ours[row].tolist()}, library {theirs[row].tolist()}"
             )
+
+
+@pytest.mark.parametrize("exercise", SAMPLERS, ids=[e.name for e in SAMPLERS])
+def test_sampler_solution_matches_library(exercise, grader):
+    """A sampling exercise's solution has the pdf of the library's sampler for that model
+    (shaders/samplers/, the lobe alone at the checks' kd = 0) and draws like it."""
+    from lab.geometry import direction
+    from lab.ibl.chisquare import pdf_integral
+    from lab.ibl.integrator import IBLRenderer
+
+    ibl = IBLRenderer(grader.renderer.ctx)
+    solution = grader.solution_model(exercise)
+    library = load_model(exercise.sampler_for)
+    angles = direction_pairs(500)
+    L = np.array([direction(t, p) for t, p in angles[:, :2]])
+    V = np.array([direction(t, p) for t, p in angles[:, 2:]])
+    for params in [check.params for check in exercise.checks]:
+        ours = ibl.brdf_pdf(solution, params, L, V)
+        theirs = ibl.brdf_pdf(library, params, L, V)
+        assert np.allclose(ours, theirs, rtol=1e-4, atol=1e-6), params
+        assert pdf_integral(ibl, solution, params, 40.0) == pytest.approx(
+            pdf_integral(ibl, library, params, 40.0), abs=1e-4
+        )

@@ -20,6 +20,7 @@ from lab.grading.spec import Check, ExerciseError
 
 class ChiSquareKind(SampledKind):
     name = "chi_square"
+    order = 50
     fields = {"views": [[10.0, 0.0], [70.0, 130.0]], "samples": 100_000, "alpha": 0.01}
     captions = {
         "your pdf": "your pdf × samples over (cos θ, φ): θ down from the normal, φ across",

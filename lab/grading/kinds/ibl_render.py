@@ -23,6 +23,7 @@ def _picture(image: np.ndarray) -> bytes:
 
 class IBLRenderKind(SampledKind):
     name = "ibl_render"
+    order = 52
     fields = {
         "samples": 32,
         "converged": 512,

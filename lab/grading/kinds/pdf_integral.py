@@ -14,6 +14,7 @@ from lab.grading.spec import Check, ExerciseError
 
 class PdfIntegralKind(SampledKind):
     name = "pdf_integral"
+    order = 51
     fields = {"views": [[5.0, 0.0], [60.0, 300.0]], "tolerance": 0.01}
 
     def validate(self, check: Check, where: str) -> None:
