@@ -52,8 +52,14 @@ function renderSlide(slide, outdir, used) {
   slide.lines.forEach((raw, offset) => {
     const line = slide.line + offset;
     const demo = /^::demo\s+(\S+)(?:\s+(\d+))?\s*$/.exec(raw);
+    const ibl = /^::ibl\s+(\S+)(?:\s+(\d+))?\s*$/.exec(raw);
     const figures = /^::figures\s+(?:(\d+)\s+)?(.*)$/.exec(raw); // optional: max height (px)
-    if (demo) {
+    if (ibl) {
+      // The reflection equation by Monte Carlo: the lab's IBL view, live (lab/ibl_demo.html).
+      used.ibl.push({ slide: used.count, hash: ibl[1] });
+      body.push(keep(`<iframe class="ibl-demo" data-src="lab/ibl_demo.html#${escapeHtml(ibl[1])}&amp;embed=1"` +
+        ` style="width:100%;border:0;height:${ibl[2] || "420"}px" title="live Monte Carlo demo"></iframe>`));
+    } else if (demo) {
       const height = demo[2] || "560";
       used.demos.push({ slide: used.count, hash: demo[1] });
       body.push(keep(`<iframe class="demo" data-src="lab/index.html#${escapeHtml(demo[1])}&amp;embed=1"` +
@@ -90,7 +96,7 @@ function renderSlide(slide, outdir, used) {
 const outdir = process.argv[2];
 if (!outdir) fail(1, "give the output folder: node slides/build.mjs OUTDIR");
 mkdirSync(outdir, { recursive: true });
-const used = { count: 0, demos: [], figures: [] };
+const used = { count: 0, demos: [], ibl: [], figures: [] };
 const sections = splitSlides(readFileSync(SOURCE, "utf8")).map((s) => renderSlide(s, outdir, used));
 const lib = (from, to) => cpSync(join(HERE, "node_modules", from), join(outdir, "lib", to), { recursive: true });
 lib("reveal.js/dist", "reveal");
@@ -121,7 +127,7 @@ ${sections.join("\n")}
     transition: "none", viewDistance: 2, pdfMaxPagesPerSlide: 1 });
   // A live demo keeps the keyboard focus after a click; it passes the slide keys up here.
   addEventListener("message", (e) => {
-    const demo = [...document.querySelectorAll("iframe.demo")].some((f) => f.contentWindow === e.source);
+    const demo = [...document.querySelectorAll("iframe.demo, iframe.ibl-demo")].some((f) => f.contentWindow === e.source);
     if (!demo || !e.data || e.data.brdfLab !== "slide") return;
     // The frame leaves with its slide: give the keyboard back to the deck first.
     document.activeElement?.blur();
@@ -134,4 +140,4 @@ ${sections.join("\n")}
 </html>
 `);
 writeFileSync(join(outdir, "deck.json"), JSON.stringify(used, null, 1) + "\n");
-console.log(`${used.count} slides, ${used.demos.length} live demos, ${used.figures.length} figures`);
+console.log(`${used.count} slides, ${used.demos.length + used.ibl.length} live demos, ${used.figures.length} figures`);

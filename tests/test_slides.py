@@ -140,7 +140,7 @@ def test_every_slide_renders(deck, deck_page, output_dir):
         assert deck_page.errors == [], f"slide {index}: {deck_page.errors}"
 
 
-def check_demo_fits(deck_page, iframe, frame, index: int) -> None:
+def check_demo_fits(deck_page, iframe, frame, index: int, sliders: int = 3) -> None:
     """The demo's frame lies on the slide, and every control and canvas of the lab lies
     inside the frame: nothing needs scrolling during the lecture."""
     slide = deck_page.evaluate(
@@ -154,7 +154,7 @@ def check_demo_fits(deck_page, iframe, frame, index: int) -> None:
     assert layout["scroll"][0] <= 0 and layout["scroll"][1] <= 0, (
         f"slide {index}: the demo scrolls by {layout['scroll']} px"
     )
-    assert layout["sliders"] >= 3  # the light's two and at least one parameter or exposure
+    assert layout["sliders"] >= sliders  # the light's two and one parameter or exposure
     for b in layout["boxes"]:
         inside = (
             b["left"] >= -0.5
@@ -338,3 +338,44 @@ def test_every_slide_fits_720p(deck, deck_720):
         if worst > 1:
             over.append(f"slide {index}: {what!r} by {worst:.0f} px")
     assert not over, "\n".join(over)
+
+
+def test_reflection_equation_demo_converges_to_the_labs_render(deck, deck_page, output_dir):
+    """The live Monte Carlo slide: both panels accumulate samples in WebGL2 float targets,
+    the MIS panel's mean radiance on the sphere agrees with lab.ibl's own render of the
+    same model, map and strategy (within 2%), and a moved slider starts both again."""
+    import numpy as np
+
+    from lab.constants import LUMA
+    from lab.ibl.integrator import Environment, render
+    from lab.web.ibl import DEMO_SIZE
+    from lab.web.slides import deck_info
+
+    (demo,) = deck_info(deck)["ibl"]
+    deck_page.evaluate(f"Reveal.slide({demo['slide']})")
+    frame_element = deck_page.wait_for_selector("section.present iframe.ibl-demo")
+    frame = frame_element.content_frame()
+    frame.wait_for_function(
+        "window.iblDemo && (iblDemo.state.error || (iblDemo.state.samples.length === 2"
+        " && Math.min(...iblDemo.state.samples) >= 64))",
+        timeout=120_000,
+    )
+    assert frame.evaluate("iblDemo.state.error") == ""
+    uniform, mis = frame.evaluate("[iblDemo.read(0), iblDemo.read(1)]")
+    assert uniform["covered"] > 0.7 and mis["samples"] >= 64
+    deck_page.screenshot(path=output_dir / f"slide_{demo['slide']:02d}_ibl_demo.png")
+    size = frame.evaluate("iblDemo.state.size")
+    image = render(
+        "ggx", {"alpha": 0.1}, Environment.load("sky", DEMO_SIZE), "mis_power", 256, size
+    )
+    sphere = image[..., 3] > 0
+    expected = float((image[..., :3] @ np.array(LUMA))[sphere].mean())
+    assert mis["mean"] == pytest.approx(expected, rel=0.02)
+    assert uniform["mean"] == pytest.approx(expected, rel=0.15)  # unbiased, but noisy
+    frame.evaluate(
+        "(() => { const r = document.getElementById('rough'); r.value = 0.8;"
+        " r.dispatchEvent(new Event('input')); })()"
+    )
+    assert max(frame.evaluate("iblDemo.panels.map(p => p.samples)")) <= 8
+    check_demo_fits(deck_page, frame_element, frame, demo["slide"], sliders=3)
+    assert deck_page.errors == []

@@ -115,6 +115,9 @@ def export(outdir: str | Path) -> Path:
     for name in environments()["names"]:
         (maps / f"{name}.f32").write_bytes(environment_bytes(name))
     (outdir / ".nojekyll").write_text("", encoding="utf-8")  # GitHub Pages: serve files as-is
+    from lab.web.ibl import write_environments
+
+    write_environments(outdir)  # the deck's Monte Carlo demo page's maps (ibl_demo.html)
     return outdir / "index.html"
 
 

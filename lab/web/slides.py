@@ -117,6 +117,18 @@ def pdf(deck: Path, output: Path, browser=None) -> Path:
             "f.contentWindow.brdfLab.state.firstRenderMs !== null)",
             timeout=60_000,
         )
+        # The Monte Carlo demo: loaded too, and printed once it shows a first image.
+        page.evaluate(
+            "document.querySelectorAll('iframe.ibl-demo').forEach(f => {"
+            " if (!f.src) f.src = f.dataset.src; })"
+        )
+        page.wait_for_function(
+            "[...document.querySelectorAll('iframe.ibl-demo')].every(f => "
+            "f.contentWindow && f.contentWindow.iblDemo && "
+            "(f.contentWindow.iblDemo.state.firstRenderMs !== null || "
+            "f.contentWindow.iblDemo.state.error))",
+            timeout=60_000,
+        )
         page.pdf(path=str(output), width="1280px", height="800px", print_background=True)
         page.close()
     return output
