@@ -133,9 +133,7 @@ def same_chi_square(a: np.ndarray, b: np.ndarray, samples: int) -> bool:
             return False
         both = (oa + ob) > 0
         stat = float(np.sum((oa[both] - ob[both]) ** 2 / (oa[both] + ob[both])))
-        from scipy import stats
-
-        if stats.chi2.sf(stat, max(int(both.sum()) - 1, 1)) < 1e-4:
+        if chisquare.chi2_sf(stat, max(int(both.sum()) - 1, 1)) < 1e-4:
             return False
     return True
 

@@ -18,7 +18,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import stats
 
 from lab.ibl.integrator import IBLRenderer
 
@@ -55,6 +54,43 @@ def random_frame(seed: int) -> np.ndarray:
     if np.linalg.det(q) < 0:
         q[:, 0] = -q[:, 0]
     return q.T  # rows: X, Y, N with X x Y = N
+
+
+def chi2_sf(statistic: float, dof: int) -> float:
+    """P(X >= statistic) for X chi-square with `dof` degrees of freedom: the regularised
+    upper incomplete gamma Q(dof/2, statistic/2), by its series below a + 1 and its
+    continued fraction (Lentz) above (Press et al., Numerical Recipes, 3rd ed., 6.2).
+    Here so that grading needs no scipy (the lean install has none)."""
+    a, x = dof / 2.0, statistic / 2.0
+    if x <= 0.0:
+        return 1.0
+    scale = math.exp(-x + a * math.log(x) - math.lgamma(a))
+    if x < a + 1.0:
+        term = total = 1.0 / a
+        n = a
+        for _ in range(100_000):
+            n += 1.0
+            term *= x / n
+            total += term
+            if abs(term) < abs(total) * 1e-15:
+                break
+        return min(max(1.0 - total * scale, 0.0), 1.0)
+    tiny = 1e-300
+    b = x + 1.0 - a
+    c, d = 1.0 / tiny, 1.0 / b
+    h = d
+    for i in range(1, 100_000):
+        an = -i * (i - a)
+        b += 2.0
+        d = an * d + b
+        d = tiny if abs(d) < tiny else d
+        c = b + an / c
+        c = tiny if abs(c) < tiny else c
+        d = 1.0 / d
+        h *= d * c
+        if abs(d * c - 1.0) < 1e-15:
+            break
+    return min(max(h * scale, 0.0), 1.0)
 
 
 def sidak(alpha: float, tests: int) -> float:
@@ -157,7 +193,7 @@ def pearson(observed: np.ndarray, expected: np.ndarray, failed: float, missing: 
     obs_a, exp_a = np.array(obs), np.array(exp)
     statistic = float(np.sum((obs_a - exp_a) ** 2 / exp_a))
     dof = max(len(obs_a) - 1, 1)
-    return statistic, dof, float(stats.chi2.sf(statistic, dof))
+    return statistic, dof, chi2_sf(statistic, dof)
 
 
 def chi_square(
