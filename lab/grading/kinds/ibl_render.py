@@ -25,8 +25,8 @@ class IBLRenderKind(SampledKind):
     name = "ibl_render"
     order = 52
     fields = {
-        "samples": 32,
-        "converged": 512,
+        "samples": 16,
+        "converged": 256,
         "environment": "grey_room",
         "factor": 1.5,
         "bias": 0.05,
