@@ -125,6 +125,7 @@ def cmd_render(args) -> int:
     job.lights, job.ambient = lights, ambient
     job.ibl = {"env": args.env, "strategy": args.strategy, "samples": args.samples}
     job.ibl["rotation"] = args.rotate
+    job.ibl["shape"] = args.shape
     views.view(args.view).plot(job)
     print(f"wrote {out}")
     for warning in job.warnings:
@@ -280,6 +281,11 @@ def build_parser(features: list[str] = FEATURE_CLIS) -> argparse.ArgumentParser:
     p.add_argument("--strategy", default="mis_power", help="ibl view: how directions are drawn")
     p.add_argument("--samples", type=int, default=256, help="ibl view: samples per pixel")
     p.add_argument("--rotate", type=float, default=0.0, help="ibl view: environment turn (deg)")
+    p.add_argument(
+        "--shape",
+        default="sphere",
+        help="ibl view: light the object view's torus, 'rounded box' or 'bumpy sphere' instead",
+    )
     p.add_argument("-o", "--output", required=True, metavar="OUT.png")
     p.set_defaults(func=cmd_render)
 

@@ -74,3 +74,21 @@ def test_ibl_view_names_the_fallback_and_opens_files(qtbot, window, tmp_path):
     bad.write_bytes(b"nope")
     view.load_file(bad)
     assert "cannot use that file" in view.status.text()
+
+
+def test_ibl_view_lights_the_object(qtbot, window, output_dir):
+    """'lit: torus' puts the object view's shape (with its yaw and pitch) under the map."""
+    window.lab.add(load_model("ggx"), {"alpha": 0.2})
+    s = window.lab.settings
+    s.set("ibl_samples", 8)
+    s.set("ibl_target", 1)  # torus
+    s.set("yaw", 0.9)
+    view = ibl_view(qtbot, window)
+    window.settle()
+    wait_samples(qtbot, view, 8)
+    half = view.runs[0].halves[0]
+    assert (half.shape, half.view, half.yaw) == ("torus", "ibl_object", 0.9)
+    image = view.runs[0].image()
+    covered = (image[..., 3] > 0.5).mean()
+    assert 0.1 < covered < 0.6  # a torus, not the sphere (0.785)
+    view.grab().save(str(output_dir / "app_view_ibl_torus.png"))

@@ -32,7 +32,11 @@ STRATEGY_TITLES = {
 }
 SAMPLER_DIR = SHADER_DIR / "samplers"
 SAMPLING_TERMS = SHADER_DIR / "terms" / "sampling.glsl"
-IBL_VIEWS = ("ibl", "ibl_sample", "ibl_pdf")
+ENVIRONMENT_TERMS = SHADER_DIR / "terms" / "environment.glsl"
+RENDER_VIEWS = ("ibl", "ibl_object")  # the sphere, and the lab's object (SHAPES)
+IBL_VIEWS = (*RENDER_VIEWS, "ibl_sample", "ibl_pdf")
+# The object view's shapes (lab.views.object.SHAPES, u_shape); "sphere" is the lit sphere.
+SHAPES = ("torus", "sphere", "rounded box", "bumpy sphere")
 NO_SAMPLER = """const bool HAS_SAMPLER = false;
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }"""
@@ -157,22 +161,27 @@ class IBLRenderer(Renderer):
     """A Renderer that also knows the IBL views (it inserts each model's sampler)."""
 
     def _assemble(self, model: Model, view: str, enums: dict, preamble: str):
+        """The view's program with the sampling terms, the model's sampler and (for the
+        render views) the environment terms between the model and the view template."""
         vertex, source = super()._assemble(model, view, enums, preamble)
         if view in IBL_VIEWS:
             path = sampler_path(model)
-            text = sampler_text(model) or NO_SAMPLER
-            label = glsl.label_of(path) if path is not None else "<no sampler>"
-            insert_before_view(source, view, text, label)
-            terms = SAMPLING_TERMS.read_text(encoding="utf-8")
-            insert_before_view(source, view, terms, glsl.label_of(SAMPLING_TERMS))
-            # the terms must precede the sampler: move the sampler after them
-            n_terms = len(terms.splitlines())
-            n_sampler = len(text.splitlines())
-            view_label = glsl.label_of(glsl.VIEW_DIR / f"{view}.glsl")
-            start = next(i for i, (f, _) in enumerate(source.origins) if f == view_label)
-            for seq in (source.lines, source.origins):
-                block = seq[start - n_terms - n_sampler : start]
-                seq[start - n_terms - n_sampler : start] = block[n_sampler:] + block[:n_sampler]
+            chunks = [
+                (SAMPLING_TERMS.read_text(encoding="utf-8"), glsl.label_of(SAMPLING_TERMS)),
+                (
+                    sampler_text(model) or NO_SAMPLER,
+                    glsl.label_of(path) if path is not None else "<no sampler>",
+                ),
+            ]
+            if view in RENDER_VIEWS:
+                chunks.append(
+                    (
+                        ENVIRONMENT_TERMS.read_text(encoding="utf-8"),
+                        glsl.label_of(ENVIRONMENT_TERMS),
+                    )
+                )
+            for text, label in chunks:  # each goes just before the view: in order
+                insert_before_view(source, view, text, label)
         return vertex, source
 
     def set_uniforms(self, program, model: Model, values, uniforms: dict) -> None:
@@ -235,6 +244,8 @@ class Progressive:
 
     `add(spp)` runs a pass; `image()` is the running mean (size, size, 4), alpha 1 on the
     sphere; `reset()` starts again (a slider moved). Samples are counted per pixel.
+    `shape` lights one of the object view's SHAPES instead of the sphere (turned by `yaw`
+    and `pitch` in radians, as that view's settings); alpha is then 1 on the object.
     """
 
     def __init__(
@@ -247,6 +258,9 @@ class Progressive:
         size: int = 256,
         rotation: float = 0.0,
         seed: int = 0,
+        shape: str | None = None,
+        yaw: float = 0.6,
+        pitch: float = 0.5,
     ):
         if strategy not in STRATEGIES:
             raise ValueError(f"unknown strategy {strategy!r}: use one of {', '.join(STRATEGIES)}")
@@ -258,13 +272,17 @@ class Progressive:
         self.size = int(size)
         self.rotation = float(rotation)
         self.seed = int(seed)
+        if shape is not None and shape not in SHAPES:
+            raise ValueError(f"unknown shape {shape!r}: use one of {', '.join(SHAPES)}")
+        self.shape, self.yaw, self.pitch = shape, float(yaw), float(pitch)
+        self.view = "ibl" if shape is None else "ibl_object"
         self.samples = 0
         self.passes = 0
         ctx = renderer.ctx
         self._texture = ctx.texture((self.size, self.size), 4, dtype="f4")
         self._fbo = ctx.framebuffer(color_attachments=[self._texture])
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
-        self.program = renderer.compiled(self.model, self.values, "ibl")
+        self.program = renderer.compiled(self.model, self.values, self.view)
 
     @property
     def fallback(self) -> str | None:
@@ -275,7 +293,7 @@ class Progressive:
         for name, value in changes.items():
             setattr(self, name, value)
         if "values" in changes or "model" in changes:
-            self.program = self.renderer.compiled(self.model, self.values, "ibl")
+            self.program = self.renderer.compiled(self.model, self.values, self.view)
         self.samples = self.passes = 0
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
 
@@ -290,6 +308,9 @@ class Progressive:
             "u_spp": spp,
             "u_frame": self.passes,
             "u_seed": self.seed,
+            "u_shape": SHAPES.index(self.shape) if self.shape else 1,
+            "u_yaw": self.yaw,
+            "u_pitch": self.pitch,
             **self.environment.bind(ctx),
         }
         self.renderer.set_uniforms(self.program, self.model, self.values, uniforms)
@@ -338,11 +359,13 @@ def render(
     rotation: float = 0.0,
     seed: int = 0,
     renderer: IBLRenderer | None = None,
+    shape: str | None = None,
 ) -> np.ndarray:
-    """A finished IBL render of the sphere: (size, size, 4) float32, row 0 at the top."""
+    """A finished IBL render of the sphere (or of the object `shape`): (size, size, 4)
+    float32, row 0 at the top."""
     renderer = renderer or IBLRenderer()
     env = environment if isinstance(environment, Environment) else Environment.load(environment)
-    job = Progressive(renderer, model, values, env, strategy, size, rotation, seed)
+    job = Progressive(renderer, model, values, env, strategy, size, rotation, seed, shape)
     try:
         return job.run(samples).image()
     finally:
@@ -368,9 +391,11 @@ def render_png(
     strategy: str = "mis_power",
     samples: int = 256,
     rotation: float = 0.0,
+    shape: str = "sphere",
 ) -> list[str]:
     """`brdf-lab render --view ibl`: render, save the PNG, return the lines to print.
-    `job` is the registry's PlotJob (size, exposure)."""
+    `job` is the registry's PlotJob (size, exposure); `shape` "sphere" is the lit sphere,
+    another of SHAPES the object view's shape."""
     from lab import plots
     from lab.errors import UsageError
 
@@ -378,6 +403,8 @@ def render_png(
         raise UsageError(f"--strategy {strategy!r}: use one of {', '.join(STRATEGIES)}")
     if not 1 <= samples <= 1_000_000:
         raise UsageError(f"--samples {samples} is outside 1..1000000")
+    if shape not in SHAPES:
+        raise UsageError(f"--shape {shape!r}: use one of {', '.join(repr(s) for s in SHAPES)}")
     try:
         environment = Environment.load(env)
     except environments.EnvironmentError as err:
@@ -386,8 +413,9 @@ def render_png(
     note = fallback(model, strategy)
     if note:
         lines.append(f"note: {note}")
-    image = render(model, values, environment, strategy, samples, job.size, rotation)
-    if environment.name == "furnace":
+    target = None if shape == "sphere" else shape
+    image = render(model, values, environment, strategy, samples, job.size, rotation, shape=target)
+    if environment.name == "furnace" and target is None:
         peak = ring_peak(image)
         if peak > 1.01:
             lines.append(
@@ -397,6 +425,7 @@ def render_png(
     plots.save_image(image[..., :3], out, job.exposure)  # the environment behind, opaque
     lines.append(
         f"{samples} samples/pixel, {STRATEGY_TITLES[strategy]}, environment {environment.name}"
+        + ("" if target is None else f", the {shape}")
     )
     return lines
 

@@ -9,6 +9,8 @@ from lab.views import PlotJob, Setting, ViewSpec
 ENVIRONMENTS = ("sky", "furnace", "studio", "grey_room")
 STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power")
 COMPARE = ("alone", *(f"vs {s}" for s in STRATEGIES))
+# What is lit: the sphere, or the object view's shapes (its yaw and pitch turn them).
+TARGETS = ("sphere", "torus", "rounded box", "bumpy sphere")
 
 
 def plot(job: PlotJob) -> None:
@@ -27,6 +29,7 @@ VIEW = ViewSpec(
         "ibl_env": Setting(0, 0, len(ENVIRONMENTS) - 1, "environment", choices=ENVIRONMENTS),
         "ibl_strategy": Setting(5, 0, len(STRATEGIES) - 1, "sampling", choices=STRATEGIES),
         "ibl_compare": Setting(0, 0, len(STRATEGIES), "side by side", choices=COMPARE),
+        "ibl_target": Setting(0, 0, len(TARGETS) - 1, "lit", choices=TARGETS),
         "ibl_samples": Setting(256, 1, 65536, "samples/pixel"),
         "ibl_rotation": Setting(0.0, 0.0, 360.0, "rotation", 1.0),
         "ibl_exposure": Setting(0.0, -8.0, 8.0, "exposure", 0.1),

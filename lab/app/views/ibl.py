@@ -40,7 +40,7 @@ from lab.ibl.integrator import (
     ring_peak,
 )
 from lab.models import ModelError
-from lab.views.ibl import COMPARE, ENVIRONMENTS, STRATEGIES
+from lab.views.ibl import COMPARE, ENVIRONMENTS, STRATEGIES, TARGETS
 
 SIZE = 192  # pixels per sphere: llvmpipe manages a few passes a second at this size
 PASS_SPP = 2
@@ -50,9 +50,20 @@ COLORS = ("#ffb000", "#4aa3ff")
 class Run:
     """One strategy as two independent progressive halves."""
 
-    def __init__(self, renderer, model, values, env, strategy, size):
+    def __init__(self, renderer, model, values, env, strategy, size, shape=None, turn=(0.6, 0.5)):
         self.halves = [
-            Progressive(renderer, model, values, env, strategy, size, seed=seed)
+            Progressive(
+                renderer,
+                model,
+                values,
+                env,
+                strategy,
+                size,
+                seed=seed,
+                shape=shape,
+                yaw=turn[0],
+                pitch=turn[1],
+            )
             for seed in (11, 29)
         ]
         self.strategy = strategy
@@ -96,6 +107,7 @@ class IBLView(View):
             SettingCombo(s, "ibl_env", ENVIRONMENTS),
             SettingCombo(s, "ibl_strategy", STRATEGIES),
             SettingCombo(s, "ibl_compare", COMPARE),
+            SettingCombo(s, "ibl_target", TARGETS),
         ]
         for combo in combos:
             combo.setSizeAdjustPolicy(
@@ -105,7 +117,8 @@ class IBLView(View):
         self.open_button = QPushButton("HDR…")
         self.open_button.setToolTip("open an equirectangular .hdr or .exr environment")
         self.open_button.clicked.connect(self.open_file)
-        for widget in (combos[0], self.open_button, combos[1], combos[2]):
+        combos[3].setToolTip("light the sphere, or the object view's shape (its yaw and pitch)")
+        for widget in (combos[3], combos[0], self.open_button, combos[1], combos[2]):
             self.tools.addWidget(widget)
         second = QHBoxLayout()
         second.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
@@ -174,7 +187,22 @@ class IBLView(View):
         state = self.lab.selected
         model = state_key(state) if state else None
         env = str(self.user_file) if self.user_file else s["ibl_env"]
-        return (model, env, tuple(self.strategies()), s["ibl_rotation"], s["ibl_samples"])
+        target = self.target()
+        turn = (s["yaw"], s["pitch"]) if target else ()
+        return (
+            model,
+            env,
+            tuple(self.strategies()),
+            s["ibl_rotation"],
+            s["ibl_samples"],
+            target,
+            *turn,
+        )
+
+    def target(self) -> str | None:
+        """The object view's shape to light, or None for the sphere."""
+        chosen = TARGETS[self.lab.settings["ibl_target"]]
+        return None if chosen == "sphere" else chosen
 
     def request(self) -> None:
         request = getattr(self.window(), "request", None)
@@ -206,7 +234,16 @@ class IBLView(View):
         s = self.lab.settings
         try:
             for strategy in self.strategies():
-                run = Run(self.gl, state.model, state.values, env, strategy, SIZE)
+                run = Run(
+                    self.gl,
+                    state.model,
+                    state.values,
+                    env,
+                    strategy,
+                    SIZE,
+                    self.target(),
+                    (s["yaw"], s["pitch"]),
+                )
                 for half in run.halves:
                     half.rotation = s["ibl_rotation"]
                 self.runs.append(run)
@@ -238,7 +275,7 @@ class IBLView(View):
             image = run.image() if run.samples else np.zeros((SIZE, SIZE, 4), np.float32)
             shown = image.copy()
             shown[..., 3] = 1.0  # the environment behind the sphere
-            if env.name == "furnace":
+            if env.name == "furnace" and self.target() is None:
                 shown = self.mark_gain(shown)
             images.append((tonemap(shown, s["ibl_exposure"], 2.2), STRATEGY_TITLES[run.strategy]))
             texts.append(self.gain_text(image, env))
@@ -253,12 +290,16 @@ class IBLView(View):
         self.status.setText(" · ".join(dict.fromkeys(parts)))
         self.status.setToolTip(self.status.text())
 
-    @staticmethod
-    def gain_text(image: np.ndarray, env: Environment) -> str:
-        """Under the white furnace, radiance above 1 is energy the BRDF creates: say so."""
-        if env.name != "furnace" or not (image[..., 3] > 0.5).any():
+    def gain_text(self, image: np.ndarray, env: Environment) -> str:
+        """Under the white furnace, radiance above 1 is energy the BRDF creates: say so
+        (rings of equal view angle on the sphere; on an object, its brightest 1%)."""
+        lit = image[..., 3] > 0.5
+        if env.name != "furnace" or not lit.any():
             return ""
-        peak = ring_peak(image)
+        if self.target() is None:
+            peak = ring_peak(image)
+        else:
+            peak = float(np.percentile(image[..., :3][lit] @ np.array(LUMA), 99))
         if peak > 1.01:
             return f"ENERGY GAIN: reflects up to {peak:.2f}× the light it receives (> 1)"
         return f"furnace: at most {peak:.2f} of the light is reflected (≤ 1)"

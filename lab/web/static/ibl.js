@@ -66,7 +66,8 @@ export function fallback(model, strategy, files) {
   return `${model.name} has no BRDF sampler: ${used} sampling instead`;
 }
 
-/** Puts the sampling terms and the model's sampler between the model and the template. */
+/** Puts the sampling terms, the model's sampler and the environment terms (the Monte Carlo
+ * estimator) between the model and the template, as lab/ibl/integrator.py does. */
 function withSampler(files) {
   return (source, model) => {
     const marker = source.lines.lastIndexOf("#define main lab_view_main");
@@ -80,6 +81,7 @@ function withSampler(files) {
     });
     add(files["terms/sampling.glsl"], "shaders/terms/sampling.glsl");
     add(sampler ?? NO_SAMPLER, sampler === null ? "<no sampler>" : `shaders/samplers/${model.name}.glsl`);
+    add(files["terms/environment.glsl"], "shaders/terms/environment.glsl"); // the estimator
     source.lines.splice(start, 0, ...lines);
     source.origins.splice(start, 0, ...origins);
   };

@@ -1,5 +1,6 @@
-// The reflection equation by Monte Carlo, live: the lab's IBL view (shaders/views/ibl.glsl
-// with shaders/terms/sampling.glsl and the model's sampler from shaders/samplers/) in
+// The deck's reflection equation by Monte Carlo, live: the lab's IBL template
+// (shaders/views/ibl.glsl after terms/sampling.glsl, the model's sampler and
+// terms/environment.glsl, as lab/ibl/integrator.py assembles it) in
 // WebGL2, accumulated pass after pass into a float target and restarted when a control
 // moves. One panel per strategy in the hash (#model=ggx&alpha=0.1&strategy=uniform&
 // strategy=mis_power&env=sky), at equal samples. The environment and its sampling tables
@@ -69,8 +70,8 @@ function link(fragment) {
   return program;
 }
 
-/** The IBL program for a model: the lab's assembly, with the sampling terms and the
- * model's sampler put before the view (as lab/ibl/integrator.py does). */
+/** The IBL program for a model: the lab's assembly, with the sampling terms, the model's
+ * sampler and the environment terms put before the view (as lab/ibl/integrator.py does). */
 async function iblProgram(name) {
   const path = `brdfs/${name}.glsl`;
   const model = parseModel(files[path], `shaders/${path}`, name);
@@ -81,6 +82,7 @@ async function iblProgram(name) {
   else extra.push(["<no sampler>", "const bool HAS_SAMPLER = false;\n" +
     "vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }\n" +
     "float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }"]);
+  extra.push(["terms/environment.glsl", files["terms/environment.glsl"]]);
   let at = source.origins.findIndex(([file]) => file === "shaders/views/ibl.glsl");
   while (at > 0 && source.origins[at - 1][0] === "<loop guard>" && source.lines[at - 1].startsWith("#define main")) at--;
   const lines = [], origins = [];
@@ -293,7 +295,7 @@ async function main() {
     return;
   }
   manifest = JSON.parse(await text("manifest.json"));
-  const wanted = ["terms/common.glsl", "terms/sampling.glsl", "views/ibl.glsl",
+  const wanted = ["terms/common.glsl", "terms/sampling.glsl", "terms/environment.glsl", "views/ibl.glsl",
     ...MODELS.map((m) => `brdfs/${m}.glsl`), ...MODELS.map((m) => `samplers/${m}.glsl`),
     ...manifest.files.filter((f) => f.startsWith("terms/"))];
   await Promise.all([...new Set(wanted)].filter((f) => manifest.files.includes(f)).map(async (f) => {
