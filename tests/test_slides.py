@@ -378,4 +378,7 @@ def test_reflection_equation_demo_converges_to_the_labs_render(deck, deck_page, 
     )
     assert max(frame.evaluate("iblDemo.panels.map(p => p.samples)")) <= 8
     check_demo_fits(deck_page, frame_element, frame, demo["slide"], sliders=3)
+    # 28 px text in the frame: at least 24 px on a 1280x720 screen, like the lab's demos.
+    small = [t for t in frame.evaluate(FRAME_TEXT) if t["px"] * 720 / 800 < MIN_TEXT_PX]
+    assert not small, small
     assert deck_page.errors == []

@@ -9,7 +9,7 @@ import { assembleFragment, vertexSource } from "./assemble.js";
 import { defaults, parseModel } from "./header.js";
 
 const STRATEGIES = ["uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power"];
-const TITLES = { uniform: "uniform hemisphere", cosine: "cosine-weighted", environment: "environment CDF",
+const TITLES = { uniform: "uniform", cosine: "cosine-weighted", environment: "environment CDF",
   brdf: "BRDF sampling", mis_balance: "MIS, balance", mis_power: "MIS, power" };
 const MODELS = ["ggx", "blinn_phong", "phong", "cook_torrance", "ward", "lambert"];
 const ENVIRONMENTS = ["sky", "studio"];
@@ -182,7 +182,7 @@ class Panel {
     gl.viewport(0, 0, s.size, s.size);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     this.ctx2d.drawImage(gl.canvas, 0, 0);
-    this.caption.textContent = `${TITLES[this.strategy]}: ${this.samples} samples per pixel`;
+    this.caption.textContent = `${TITLES[this.strategy]}: ${this.samples} spp`;
   }
 
   /** The running mean (float RGBA, rows from the bottom) and its mean luminance on the sphere. */
