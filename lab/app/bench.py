@@ -195,6 +195,13 @@ def run_bench(app, launched: float) -> int:
         f"launch to first frame: {first_frame:.2f} s ({first_frame_cpu:.2f} s of CPU time in "
         "this process); heavy modules loaded by then: " + (", ".join(heavy) or "none")
     )
+    if sys.dont_write_bytecode:
+        # Installed wheels and normal runs keep compiled modules; without them every start
+        # compiles the lab from source (about 0.1 s), so the launch figure reads high.
+        print(
+            "note: PYTHONDONTWRITEBYTECODE is set; where no __pycache__ exists, the lab is "
+            "compiled from source at every start (about 0.1 s of the launch figure)"
+        )
     worst = max(np.percentile(times, 95) for _, times, _, _, _ in results)
     verdict = "met" if worst <= TARGET_P95_MS and first_frame <= TARGET_LAUNCH_S else "NOT met"
     print(
