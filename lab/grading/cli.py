@@ -254,7 +254,7 @@ def cmd_gradescope_zip(args) -> int:
 def cmd_bench(args) -> int:
     from lab.grading import bench
 
-    bench.run(submissions=args.submissions, workers=args.workers)
+    bench.run(submissions=args.submissions, workers=args.workers, only=args.exercises)
     return 0
 
 
@@ -319,4 +319,10 @@ def register(sub) -> None:
     p = sub.add_parser("grade-bench", help="grading latency and grade-all throughput")
     p.add_argument("--submissions", type=int, default=200, help="students in the made-up class")
     p.add_argument("--workers", type=int, default=workers)
+    p.add_argument(
+        "--exercises",
+        default="",
+        metavar="01,02,...",
+        help="the class's exercises: names or their starts, comma-separated (default: all)",
+    )
     p.set_defaults(func=cmd_bench)
