@@ -1,15 +1,17 @@
 """The web lab's JavaScript mirrors of Python code agree with it on a table of cases.
 
 The page's directions and plane of incidence (static/geometry.js, lab/geometry.py), its
-value parsing and sliders (static/values.js: Param.parse, parse_rgb, the app's sliders) and
-the library headers the manifest carries (parsed in Python, used by the page without
-parsing) are each run in node and compared with the Python on the same inputs. The header
-parser and the GLSL assembly have their own fixtures (test_web_fixtures.py).
+value parsing and sliders (static/values.js: Param.parse, parse_rgb, the app's sliders), its
+polar scale (static/plotscale.js, lab/plotscale.py) and the library headers the manifest
+carries (parsed in Python, used by the page without parsing) are each run in node and
+compared with the Python on the same inputs. The header parser and the GLSL assembly have
+their own fixtures (test_web_fixtures.py).
 """
 
 from __future__ import annotations
 
 import json
+import math
 import shutil
 import subprocess
 from pathlib import Path
@@ -17,9 +19,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lab.constants import GRAZING_DEG, PLOT_DECADES
 from lab.errors import UsageError, parse_rgb
 from lab.geometry import direction, plane_of_incidence
 from lab.models import MODEL_DIR, ModelError, Param, model_names
+from lab.plotscale import Scale, peak_value
 from lab.web.site import manifest
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -100,6 +104,22 @@ LIGHTS = [
     (t, p) for t in (0.0, 0.5, 30.0, 45.0, 89.9, 90.0) for p in (0.0, 90.0, -45.0, 270.0, 725.5)
 ]
 PLANES = [(p, s) for p in (0.0, 30.0, 180.0, 359.0, -120.0) for s in (1.0, 0.5, 2.5, 7.0)]
+THETA_O = list(range(-90, 91))
+# Lobes as the page samples them: peaks inside the cut-off, a divergence at the horizon
+# (Ward), a lobe wholly beyond the cut-off, all zero, negative values.
+LOBES = [
+    [math.exp(-(((t - 40) / 12) ** 2)) for t in THETA_O],
+    [0.3 / math.sqrt(max(math.cos(math.radians(t)), 1e-9)) for t in THETA_O],
+    [5.0 if abs(t) > GRAZING_DEG else 0.0 for t in THETA_O],
+    [0.0 for _ in THETA_O],
+    [-1.0 + 0.01 * t for t in THETA_O],
+]
+RADII = [
+    (f, top, log)
+    for f in (0.0, -1.0, 1e-9, 1e-4, 0.05, 0.5, 1.0, 2.0, 123.0)
+    for top in (1.0, 0.25, 1e3)
+    for log in (False, True)
+]
 
 
 def jsonable(param: Param) -> dict:
@@ -156,6 +176,8 @@ def javascript():
         "slider_value": [(jsonable(p), k) for p in float_params for k in positions],
         "slider_position": [(jsonable(p), v) for p, v in samples],
         "library": library_files(),
+        "peak": [(THETA_O, lobe, GRAZING_DEG) for lobe in LOBES],
+        "radius": [(f, top, log, PLOT_DECADES) for f, top, log in RADII],
     }
     python = {
         "values": [python_value(p, t) for p in PARAMS for t in TEXTS],
@@ -236,3 +258,13 @@ def test_manifest_headers_are_what_the_page_would_parse(javascript):
         assert "error" not in header, header
         assert json.loads(json.dumps(header)) == js["headers"][name], name
         assert header["params"] and header["title"], name
+
+
+def test_plot_scale_matches_python(javascript):
+    """The page's peak (grazing values left out) and radii, linear and log, are plotscale's."""
+    _, _, js = javascript
+    for lobe, got in zip(LOBES, js["peak"], strict=True):
+        assert got == pytest.approx(peak_value(np.array(THETA_O), np.array(lobe)), rel=1e-12)
+    for (f, top, log), got in zip(RADII, js["radius"], strict=True):
+        want = float(Scale(top, log, PLOT_DECADES).radius(np.array([f]))[0])
+        assert got == pytest.approx(want, rel=1e-12, abs=1e-15), (f, top, log)

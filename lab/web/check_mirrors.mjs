@@ -5,6 +5,7 @@ import { readFileSync } from "node:fs";
 
 import { direction, planeOfIncidence } from "./static/geometry.js";
 import { parseModel } from "./static/header.js";
+import { peakValue, polarRadius } from "./static/plotscale.js";
 import { parseRgb, parseValue, sliderToValue, valueToSlider } from "./static/values.js";
 
 const cases = JSON.parse(readFileSync(process.argv[2], "utf8"));
@@ -23,6 +24,8 @@ const out = {
   rgb: cases.rgb.map((text) => parseRgb(text)),
   slider_value: cases.slider_value.map(([p, position]) => sliderToValue(p, position)),
   slider_position: cases.slider_position.map(([p, value]) => valueToSlider(p, value)),
+  peak: cases.peak.map(([thetaO, values, grazing]) => peakValue(thetaO, values, grazing)),
+  radius: cases.radius.map(([f, top, log, decades]) => polarRadius(f, top, log, decades)),
   // The library's headers as the page would parse them (the manifest carries the Python's).
   headers: Object.fromEntries(Object.entries(cases.library).map(([name, { path, code }]) => {
     const parsed = attempt(() => parseModel(code, path, name));

@@ -9,6 +9,7 @@ import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 import { openModelFile } from "./measured.js";
+import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
 VIEWS.ibl = IblView; // its own module (ibl.js)
@@ -647,14 +648,15 @@ const luma = (r, g, b) => C.LUMA[0] * r + C.LUMA[1] * g + C.LUMA[2] * b;
 function lobeLuminance(panel) {
   const values = panel.lobe;
   const lum = [];
-  let peak = 0;
+  const thetaO = [];
   for (let i = 0; i < POLAR_STEPS; i++) {
     let f = luma(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
     if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
     f = Number.isFinite(f) ? Math.max(f, 0) : 0;
     lum.push(f);
-    if (Math.abs(i - 90) <= C.GRAZING_DEG) peak = Math.max(peak, f);
+    thetaO.push(i - 90);
   }
+  const peak = peakValue(thetaO, lum, C.GRAZING_DEG);
   return { lum, peak, spike: panel.spike ? luma(...panel.spike) : null, color: panel.color, name: panel.name };
 }
 
@@ -680,9 +682,7 @@ function drawPolars() {
 
 /** Radius (0..1 of the plot's) of value f on a scale whose outer circle is `scale`. */
 function polarRadius(f, scale) {
-  if (!lab.polarLog) return Math.min(f / scale, 1);
-  const floor = scale * Math.pow(10, -C.PLOT_DECADES);
-  return Math.min(Math.max(Math.log10(Math.max(f, floor) / floor), 0) / C.PLOT_DECADES, 1);
+  return scaleRadius(f, scale, lab.polarLog, C.PLOT_DECADES);
 }
 
 /** Lobes on a half disc, 0 deg = the normal, rings labelled with their values. */
