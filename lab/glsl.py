@@ -139,10 +139,17 @@ def _closing(text: str, start: int) -> int | None:
     return None
 
 
-def guard_loops(code: str) -> tuple[str, list[int]]:
+# A loop the guard stops in an exercise's sampler file reports its line plus this, so the
+# grader can tell it from a line of the model file (lab.grading.exercise.sampler_model).
+SAMPLER_LINE_BASE = 1_000_000
+
+
+def guard_loops(code: str, counter: str = "lab_loop_", line_base: int = 0) -> tuple[str, list[int]]:
     """`code` with each loop's condition preceded by `lab_loop_step(counter, line) && `;
     also returns the loops' lines. Positions within a line shift, lines never do, so
-    compile errors keep their line numbers. A do-while is guarded at its `while`."""
+    compile errors keep their line numbers. A do-while is guarded at its `while`.
+    `counter` names the counters (`counter` + k) and `line_base` is added to the reported
+    line, for a second guarded file in one program."""
     blank = COMMENTS.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), code)
     inserts: list[tuple[int, str]] = []
     lines: list[int] = []
@@ -152,7 +159,7 @@ def guard_loops(code: str) -> tuple[str, list[int]]:
         if end is None:
             continue  # the compiler will report the unbalanced parenthesis
         line = blank.count("\n", 0, match.start()) + 1
-        guard = f"lab_loop_step(lab_loop_{len(lines)}, {line})"
+        guard = f"lab_loop_step({counter}{len(lines)}, {line_base + line})"
         if match.group(1) == "for":
             depth, semis = 0, []
             for index in range(start + 1, end):

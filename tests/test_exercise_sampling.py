@@ -78,6 +78,24 @@ def test_a_compile_error_points_at_the_students_line(grader, tmp_path):
         assert "does not compile" in result.message and f":{line}:" in result.message
 
 
+def test_an_endless_loop_in_the_sampler_is_named_not_graded(grader, tmp_path):
+    """llvmpipe ends any loop after 65,535 iterations, so without the guard this sampler
+    would draw the right samples and earn full marks; on a real GPU it freezes the screen."""
+    loop = "    float x = 1.0;\n    while (x < 2.0) { x += 1e-30 * x; }\n"
+    path = edited(
+        tmp_path,
+        [("    float phi = 2.0 * PI * u.y;\n", "    float phi = 2.0 * PI * u.y;\n" + loop)],
+    )
+    line = path.read_text().splitlines().index("    while (x < 2.0) { x += 1e-30 * x; }") + 1
+    results = grade(grader, path)
+    for name in ("chi_square.glossy", "chi_square.rough", "ibl_render.grey_room"):
+        result = results[name]
+        assert result.points == 0 and result.loop_line == line, (name, result.message)
+        assert f"{path.name}:{line}: the loop at line {line} did not end" in result.message
+    assert results["pdf_integral.views"].passed  # the pdf runs no loop
+    assert all(r.passed for r in grade(grader, EXERCISE.solution).values())  # nothing sticks
+
+
 @pytest.mark.parametrize(
     "old,new,words",
     [

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lab.glsl import ShaderCompileError, label_of
+from lab.glsl import SAMPLER_LINE_BASE, ShaderCompileError, label_of
 from lab.grading.compare import (  # noqa: F401 - the names grading code has always used
     bad_values,
     compare_values,
@@ -234,6 +234,9 @@ class Grader:
         expected: np.ndarray,
         live: bool = False,
     ) -> CheckResult:
+        twin = getattr(self.renderer, "_ibl_twin", None)  # a sampling exercise's passes
+        if twin is not None:
+            twin.loop_stopped = None
         try:
             raw = render(self.renderer, model, check)
         except ShaderCompileError as err:
@@ -246,9 +249,15 @@ class Grader:
         except ModelError as err:
             return failed(check, str(err), status="error")
         stop = self.renderer.loop_stop()
+        twin = getattr(self.renderer, "_ibl_twin", None)
+        if stop is None and twin is not None:
+            stop, twin.loop_stopped = twin.loop_stopped, None
         if stop is not None:
             line, x, y = stop
-            file, line = wrapper_origin(exercise, code, label_of(model.path), line)
+            if line >= SAMPLER_LINE_BASE:  # a loop in a sampling exercise's file
+                file, line = label_of(model.sampler_path), line - SAMPLER_LINE_BASE
+            else:
+                file, line = wrapper_origin(exercise, code, label_of(model.path), line)
             where = stopped_where(check, x, y)
             return failed(
                 check,

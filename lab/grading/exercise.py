@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
-from lab.glsl import label_of
+from lab.glsl import SAMPLER_LINE_BASE, guard_loops, label_of
 from lab.grading import kinds
 from lab.grading.spec import Check, ExerciseError  # noqa: F401 - importable from here
 from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
@@ -299,8 +299,13 @@ def sampler_model(exercise: Exercise, path: Path, code: str) -> Model:
     except (ModelError, SourceError) as err:
         raise SubmissionError(str(err)) from None
     model.sampler_path = path
-    model.sampler_code = compiled.rstrip("\n") + "\n" + LOBE_SAMPLER
     model.loop_limit = exercise.loop_limit
+    code, loops = compiled, []
+    if model.loop_limit > 0:  # the student's loops, guarded as a model file's are
+        code, loops = guard_loops(compiled, "lab_loop_sampler_", SAMPLER_LINE_BASE)
+    # The counters share the first line, so the file's line numbers stay its own.
+    counters = "".join(f"int lab_loop_sampler_{k} = 0; " for k in range(len(loops)))
+    model.sampler_code = counters + code.rstrip("\n") + "\n" + LOBE_SAMPLER
     return model
 
 

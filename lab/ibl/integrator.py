@@ -70,6 +70,11 @@ def sampler_text(model: Model) -> str | None:
     return path.read_text(encoding="utf-8") if path is not None else None
 
 
+def guarded(model: Model) -> bool:
+    """Whether the model's sampler is an exercise's, with its loops guarded."""
+    return getattr(model, "sampler_code", None) is not None and model.loop_limit > 0
+
+
 def sampler_key(model: Model) -> str:
     """A comment line naming the sampler's text, so the program cache tells samplers apart."""
     text = sampler_text(model) or ""
@@ -158,7 +163,12 @@ def frame_uniforms(frame=None) -> dict:
 
 
 class IBLRenderer(Renderer):
-    """A Renderer that also knows the IBL views (it inserts each model's sampler)."""
+    """A Renderer that also knows the IBL views (it inserts each model's sampler).
+
+    `loop_stopped` keeps the first (line, x, y) where the loop guard stopped a loop of an
+    exercise's sampler over many passes, until the grader takes it (lab.grading.checks)."""
+
+    loop_stopped: tuple[int, int, int] | None = None
 
     def _assemble(self, model: Model, view: str, enums: dict, preamble: str):
         """The view's program with the sampling terms, the model's sampler and (for the
@@ -233,6 +243,8 @@ class IBLRenderer(Renderer):
             textures.append(texture)
         try:
             fbo = self._run(model, view, values, (width, height), uniforms, sampler_key(model))
+            if guarded(model) and self.loop_stopped is None:
+                self.loop_stopped = self.loop_stop()
             return self._read(fbo).reshape(-1, 4)[:n].astype(np.float64)
         finally:
             for texture in textures:
@@ -280,7 +292,8 @@ class Progressive:
         self.passes = 0
         ctx = renderer.ctx
         self._texture = ctx.texture((self.size, self.size), 4, dtype="f4")
-        self._fbo = ctx.framebuffer(color_attachments=[self._texture])
+        self._flag = ctx.texture((self.size, self.size), 1, dtype="f4")  # the loop guard's
+        self._fbo = ctx.framebuffer(color_attachments=[self._texture, self._flag])
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
         self.program = renderer.compiled(self.model, self.values, self.view)
 
@@ -314,6 +327,9 @@ class Progressive:
             **self.environment.bind(ctx),
         }
         self.renderer.set_uniforms(self.program, self.model, self.values, uniforms)
+        watch = guarded(self.model) and self.renderer.loop_stopped is None
+        if watch:  # blending adds the flag up: start each pass from 0
+            self._flag.write(np.zeros((self.size, self.size), np.float32))
         previous = ctx.fbo  # bound again after: our target may be released while bound
         self._fbo.use()
         ctx.enable(moderngl.BLEND)
@@ -325,6 +341,13 @@ class Progressive:
             ctx.blend_func = moderngl.DEFAULT_BLENDING
             if previous is not None and previous is not self._fbo:
                 previous.use()
+        if watch:
+            flag = np.frombuffer(self._flag.read(), np.float32)
+            hits = np.flatnonzero(flag > 0.5)
+            if hits.size:
+                first = int(hits[0])
+                line = int(round(float(flag[first])))
+                self.renderer.loop_stopped = (line, first % self.size, first // self.size)
         self.samples += spp
         self.passes += 1
 
@@ -347,6 +370,7 @@ class Progressive:
             self.renderer.target(1, 1).use()
         self._fbo.release()
         self._texture.release()
+        self._flag.release()
 
 
 def render(

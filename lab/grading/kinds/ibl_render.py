@@ -31,6 +31,10 @@ class IBLRenderKind(SampledKind):
         "factor": 1.5,
         "bias": 0.05,
     }
+
+    def where(self, check: Check, x: int, y: int) -> str:
+        return f"pixel ({x}, {y}) of the render (row 0 at the bottom)"
+
     captions = {
         "converged reference": "the solution's estimator, converged",
         "solution": "the solution's sampler at the same samples",
