@@ -8,6 +8,7 @@ import base64
 
 import numpy as np
 import pytest
+from webpage import open_page
 
 from lab.constants import LUMA
 from lab.ibl.environments import DEFAULT_SIZE, procedural
@@ -24,18 +25,7 @@ SIZE = 64  # the page's sphere size: the IBL view renders at this size too
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
-    from lab.web.browser import chromium
-    from lab.web.site import export, serving
-
-    site = export(tmp_path_factory.mktemp("site")).parent
-    with serving(site) as url, chromium() as browser:
-        tab = browser.new_page(viewport={"width": 1400, "height": 900})
-        errors: list[str] = []
-        tab.on("console", lambda m: m.type == "error" and errors.append(m.text))
-        tab.on("pageerror", lambda e: errors.append(str(e)))
-        tab.goto(f"{url}index.html#model=ggx&size={SIZE}&views=ibl")
-        tab.evaluate("window.brdfLab.ready")
-        tab.errors = errors
+    with open_page(tmp_path_factory, f"model=ggx&size={SIZE}&views=ibl") as tab:
         yield tab
 
 

@@ -7,6 +7,7 @@ import base64
 
 import numpy as np
 import pytest
+from webpage import open_page
 
 from lab.models import load_model
 from lab.views.lobe3d import LOBE_GRID, LobeCamera, _lobe_common
@@ -24,18 +25,9 @@ BACKGROUND = (40 / 255, 40 / 255, 44 / 255, 1.0)
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
-    from lab.web.browser import chromium
-    from lab.web.site import export, serving
-
-    site = export(tmp_path_factory.mktemp("site")).parent
-    with serving(site) as url, chromium() as browser:
-        tab = browser.new_page(viewport={"width": 1400, "height": 900})
-        errors: list[str] = []
-        tab.on("console", lambda m: m.type == "error" and errors.append(m.text))
-        tab.on("pageerror", lambda e: errors.append(str(e)))
-        tab.goto(f"{url}index.html#model=phong&size={SIZE}&light={LIGHT[0]:g},{LIGHT[1]:g}")
-        tab.evaluate("window.brdfLab.ready")
-        tab.errors = errors
+    with open_page(
+        tmp_path_factory, f"model=phong&size={SIZE}&light={LIGHT[0]:g},{LIGHT[1]:g}"
+    ) as tab:
         yield tab
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from webpage import open_page
 
 from lab.models import load_model
 from lab.views.terms import microfacet_terms
@@ -18,18 +19,9 @@ LIGHT = (35.0, 20.0)
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
-    from lab.web.browser import chromium
-    from lab.web.site import export, serving
-
-    site = export(tmp_path_factory.mktemp("site")).parent
-    with serving(site) as url, chromium() as browser:
-        tab = browser.new_page(viewport={"width": 1400, "height": 900})
-        errors: list[str] = []
-        tab.on("console", lambda m: m.type == "error" and errors.append(m.text))
-        tab.on("pageerror", lambda e: errors.append(str(e)))
-        tab.goto(f"{url}index.html#model=ggx&light={LIGHT[0]:g},{LIGHT[1]:g}&views=terms")
-        tab.evaluate("window.brdfLab.ready")
-        tab.errors = errors
+    with open_page(
+        tmp_path_factory, f"model=ggx&light={LIGHT[0]:g},{LIGHT[1]:g}&views=terms"
+    ) as tab:
         yield tab
 
 

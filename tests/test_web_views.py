@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from webpage import open_page
 
 from lab.constants import LUMA, PLOT_DECADES
 from lab.models import load_model
@@ -26,18 +27,7 @@ REL_TOL = 1e-3
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
-    from lab.web.browser import chromium
-    from lab.web.site import export, serving
-
-    site = export(tmp_path_factory.mktemp("site")).parent
-    with serving(site) as url, chromium() as browser:
-        tab = browser.new_page(viewport={"width": 1400, "height": 900})
-        errors: list[str] = []
-        tab.on("console", lambda m: m.type == "error" and errors.append(m.text))
-        tab.on("pageerror", lambda e: errors.append(str(e)))
-        tab.goto(f"{url}index.html#model=phong&size={SIZE}&light=40,20")
-        tab.evaluate("window.brdfLab.ready")
-        tab.errors = errors
+    with open_page(tmp_path_factory, f"model=phong&size={SIZE}&light=40,20") as tab:
         yield tab
 
 
