@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from lab.app.watch import ExerciseView
-from lab.grading.checks import read_png
+from lab.app.watch_sampler import SamplerView
+from lab.grading.checks import Grader, read_png
 from lab.grading.exercise import load_exercise
 from lab.models import MODEL_DIR
 
@@ -75,3 +76,32 @@ def test_exercise_file_is_shown_as_the_grader_renders_it(tmp_path, renderer, nam
     result = run_watch(stub_path)
     assert result.returncode == 0, result.stderr
     assert f"exercise {name}: showing check" in result.stdout
+
+
+def test_a_sampler_file_is_judged_as_the_grader_judges_it(tmp_path, renderer):
+    """Exercise 10: the watched file is the student's sampler. The checks it reruns at each
+    save give the grader's verdicts and messages, and the samples' histogram is shown."""
+    name = "10_importance_sampling"
+    assert ExerciseView.find(copy_exercise(tmp_path / "s", name, solved=True)) is None
+    for solved in (True, False):
+        path = copy_exercise(tmp_path / str(solved), name, solved=solved)
+        view = SamplerView.find(path)
+        assert view is not None and {c.kind for c in view.checks} == {"chi_square", "pdf_integral"}
+        lines, panels = view.judge(renderer, view.load(path))
+        graded = {r.name: r for r in Grader().run(view.exercise, path)}
+        for check, line in zip(view.checks, lines, strict=False):
+            result = graded[check.name]
+            assert (
+                line
+                == f"  {check.name}: {'passed' if result.passed else 'FAILED'}: {result.message}"
+            )
+        assert all(graded[c.name].passed == solved for c in view.checks)
+        assert "ibl_render.grey_room" in lines[-1]  # named as left to the grader
+        samples = panels[0][..., :3].astype(int)
+        histogram = samples[90:230, 10:310]  # inside the caption and the margins
+        # Solved: the samples fill the histogram's top rows; the stub draws none.
+        assert (histogram.max(axis=2) > 100).mean() > 0.05 if solved else histogram.max() < 10
+    result = run_watch(path)
+    assert result.returncode == 0, result.stderr
+    assert "judged by the grader's checks" in result.stdout
+    assert "chi_square.glossy: FAILED" in result.stdout

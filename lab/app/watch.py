@@ -4,7 +4,8 @@ Shows the lit sphere and the polar lobe of their model, reloads on save, prints 
 errors with the file's line numbers (the last good version stays on screen). When the file
 is an exercise's student file, it is rendered exactly as the grader renders the exercise's
 sphere check (its parameters, lights and tone mapping; term exercises inside their library
-model) and shown beside the reference image and a difference image.
+model) and shown beside the reference image and a difference image. A sampling exercise's
+file is judged by the grader's sampling checks instead (watch_sampler.py).
 """
 
 from __future__ import annotations
@@ -111,21 +112,64 @@ def load_rgba_array(image: np.ndarray, size: int) -> np.ndarray:
     return np.asarray(Image.fromarray(image, "RGBA").resize((size, size), Image.NEAREST))
 
 
+def model_panels(renderer, path: Path, exercise, reference, light) -> tuple[list, str]:
+    """The sphere and polar lobe of the file (as the grader renders the exercise's sphere
+    check, beside its reference and a difference image), and the status line."""
+    from lab import plots
+    from lab.app.state import load_any
+    from lab.nonfinite import sphere_report
+    from lab.render import direction
+
+    if exercise:
+        model = exercise.load(path)
+        values = model.resolve(exercise.check.params)
+        theirs = load_rgba_array(exercise.sphere(renderer, model), PANEL)
+    else:
+        model = load_any(path)
+        values = model.defaults()
+        sphere = renderer.sphere(model, values, light, size=PANEL)
+        theirs = np.dstack(
+            [plots.to_srgb8(sphere[..., :3]), (sphere[..., 3:] * 255).astype(np.uint8)]
+        )
+    images = [theirs, polar_image(renderer, model, values, *light)]
+    if reference is not None:
+        diff = np.abs(theirs[..., :3].astype(int) - reference[..., :3].astype(int))
+        diff = np.clip(diff * 4, 0, 255).astype(np.uint8)
+        images += [reference, np.dstack([diff, np.full(diff.shape[:2], 255, np.uint8)])]
+    stop = renderer.loop_stop()
+    if stop is not None:
+        print(f"{time.strftime('%H:%M:%S')} warning: {loop_warning(model, stop[0])}")
+    # Tone mapping hides NaN and Inf as black: look at the floats.
+    floats = renderer.sphere(model, values, light, size=PANEL)
+    problem = sphere_report(floats, direction(*light))
+    return images, f"compiled, but {problem}" if problem else "OK"
+
+
+def replace_textures(ctx, textures: list, images: list[np.ndarray]) -> list:
+    """Textures of `images` (RGBA uint8), the previous ones released."""
+    for texture in textures:
+        texture.release()
+    out = []
+    for image in images:
+        rgba = np.ascontiguousarray(image[..., :4])
+        out.append(ctx.texture((rgba.shape[1], rgba.shape[0]), 4, rgba.tobytes()))
+    return out
+
+
 def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
     """Run the viewer until the window closes (or `frames` frames, for tests)."""
     import glfw
 
-    from lab import plots
-    from lab.app.state import load_any
+    from lab.app.watch_sampler import SamplerView
     from lab.gl import get_context
-    from lab.nonfinite import sphere_report
-    from lab.render import Renderer, direction
+    from lab.render import Renderer
 
     if not glfw.init():
         print("brdf-lab: cannot open a GLFW window (no display?)", file=sys.stderr)
         return 2
     exercise = ExerciseView.find(path.resolve())
-    panels = 4 if exercise else 2
+    sampler = None if exercise else SamplerView.find(path.resolve())
+    panels = 4 if exercise else 3 if sampler else 2
     glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
     glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
     glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
@@ -150,41 +194,23 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
             f"exercise {exercise.exercise.name}: showing check {exercise.check.name} beside "
             f"its reference image {exercise.reference_path}"
         )
+    if sampler:
+        print(
+            f"exercise {sampler.exercise.name}: your sampler, judged by the checks "
+            f"{', '.join(c.name for c in sampler.checks)} at each save"
+        )
     while not glfw.window_should_close(window):
         stamp = path.stat().st_mtime if path.exists() else mtime
         if stamp != mtime:
             mtime = stamp
             try:
-                if exercise:
-                    model = exercise.load(path)
-                    values = model.resolve(exercise.check.params)
-                    sphere = exercise.sphere(renderer, model)
-                    theirs = load_rgba_array(sphere, PANEL)
+                if sampler:
+                    lines, images = sampler.judge(renderer, sampler.load(path))
+                    textures = replace_textures(ctx, textures, images)
+                    status = "\n".join(["judged by the grader's checks:", *lines])
                 else:
-                    model = load_any(path)
-                    values = model.defaults()
-                    sphere = renderer.sphere(model, values, light, size=PANEL)
-                    theirs = np.dstack(
-                        [plots.to_srgb8(sphere[..., :3]), (sphere[..., 3:] * 255).astype(np.uint8)]
-                    )
-                images = [theirs, polar_image(renderer, model, values, *light)]
-                if reference is not None:
-                    diff = np.abs(theirs[..., :3].astype(int) - reference[..., :3].astype(int))
-                    diff = np.clip(diff * 4, 0, 255).astype(np.uint8)
-                    images += [reference, np.dstack([diff, np.full(diff.shape[:2], 255, np.uint8)])]
-                for texture in textures:
-                    texture.release()
-                textures = []
-                for image in images:
-                    rgba = np.ascontiguousarray(image[..., :4])
-                    textures.append(ctx.texture((rgba.shape[1], rgba.shape[0]), 4, rgba.tobytes()))
-                stop = renderer.loop_stop()
-                if stop is not None:
-                    print(f"{time.strftime('%H:%M:%S')} warning: {loop_warning(model, stop[0])}")
-                # Tone mapping hides NaN and Inf as black: look at the floats.
-                floats = renderer.sphere(model, values, light, size=PANEL)
-                problem = sphere_report(floats, direction(*light))
-                status = f"compiled, but {problem}" if problem else "OK"
+                    images, status = model_panels(renderer, path, exercise, reference, light)
+                    textures = replace_textures(ctx, textures, images)
                 print(f"{time.strftime('%H:%M:%S')} compiled {path.name}: {status}", flush=True)
             except (ModelError, ShaderCompileError) as err:
                 print(

@@ -47,13 +47,19 @@ class ChiSquareKind(SampledKind):
         view = max(worst, 0)
         _, mine_pdf, _ = sampling._split(raw[view])
         mine, _, _ = sampling._split(raw[view])
-        peak = max(float(mine_pdf.max()), float(mine.max()), 1.0)
+        solution = expected[view, 800:1600] if expected is not None else None
+        if solution is not None and expected.shape != raw.shape:
+            solution = None
+        # One scale for the three pictures, so that none saturates (a pdf of 0 next to the
+        # solution's would otherwise leave the solution's all white).
+        shown = [mine_pdf, mine] + ([solution] if solution is not None else [])
+        peak = max(max(float(h.max()) for h in shown), 1.0)
         images = {
             "your pdf": png(sampling.histogram_image(mine_pdf, peak)),
             "your samples": png(sampling.histogram_image(mine, peak)),
         }
-        if expected is not None and expected.shape == raw.shape:
-            images["solution's pdf"] = png(sampling.histogram_image(expected[view, 800:1600], peak))
+        if solution is not None:
+            images["solution's pdf"] = png(sampling.histogram_image(solution, peak))
         extra = {"images": images, "extra": {"view": list(views[view])}}
         return passed(check, message, **extra) if ok else failed(check, message, **extra)
 

@@ -1,0 +1,108 @@
+"""`brdf-lab watch` on a sampling exercise's file (exercise 10): the student's sampler,
+judged as the grader judges it.
+
+On each save the exercise's chi-square and pdf-integral checks run with the grader's own
+code and print their verdicts; the window shows where the samples land beside what the
+student's pdf predicts (and the solution's pdf), over (cos θ, φ) bins, as the report does.
+"""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+
+SHOWN_KINDS = ("chi_square", "pdf_integral")  # quick enough to rerun on every save
+PANELS = ("your samples", "your pdf", "solution's pdf")
+
+
+class SamplerView:
+    """The checks of a sampling exercise that run in a second, on the student's file."""
+
+    def __init__(self, path: Path):
+        from lab.grading.exercise import load_exercise
+
+        self.exercise = load_exercise(path.parent)
+        self.checks = [c for c in self.exercise.checks if c.kind in SHOWN_KINDS]
+        self.left_out = [c.name for c in self.exercise.checks if c.kind not in SHOWN_KINDS]
+
+    @classmethod
+    def find(cls, path: Path) -> SamplerView | None:
+        """The view for `path` if it is the student file of a sampling exercise."""
+        from lab.grading.exercise import ExerciseError
+
+        if not (path.parent / "exercise.toml").is_file():
+            return None
+        try:
+            view = cls(path)
+        except (ExerciseError, OSError):
+            return None
+        exercise = view.exercise
+        if not exercise.sampler_for or exercise.student_file != path.name or not view.checks:
+            return None
+        return view
+
+    def load(self, path: Path):
+        """The library model with the student's sampler (raises ModelError on a bad file)."""
+        from lab.grading.exercise import SubmissionError, build_model, read_submission
+        from lab.models import ModelError
+
+        try:
+            return build_model(self.exercise, path, read_submission(path))
+        except SubmissionError as err:
+            raise ModelError(str(err)) from None
+
+    def judge(self, renderer, model) -> tuple[list[str], list[np.ndarray]]:
+        """Each check's verdict line, and the histograms of the first chi-square check
+        (its worst view) as RGBA panels."""
+        from lab.grading.kinds import kind_of
+
+        lines: list[str] = []
+        panels: list[np.ndarray] = []
+        for check in self.checks:
+            kind = kind_of(check)
+            try:
+                expected = kind.load_reference(self.exercise, check)
+            except (OSError, KeyError):
+                expected = None
+            result = kind.compare(check, expected, kind.render(renderer, model, check))
+            lines.append(
+                f"  {check.name}: {'passed' if result.passed else 'FAILED'}: {result.message}"
+            )
+            if not panels and result.images:
+                view = result.extra.get("view", [0.0, 0.0])
+                where = f"view θ {view[0]:.0f}°, φ {view[1]:.0f}°"
+                panels = [
+                    captioned(result.images[label], f"{label} ({where})")
+                    for label in PANELS
+                    if label in result.images
+                ]
+        if self.left_out:
+            lines.append(f"  not run here (brdf-lab grade runs them): {', '.join(self.left_out)}")
+        return lines, panels
+
+
+def captioned(png: bytes, caption: str, size: int = 320) -> np.ndarray:
+    """A report histogram (PNG) scaled to the panel's width under its caption, RGBA uint8."""
+    from matplotlib import font_manager
+    from PIL import Image, ImageDraw, ImageFont
+
+    font_file = font_manager.findfont("DejaVu Sans")  # matplotlib's own: it has θ and φ
+
+    histogram = Image.open(io.BytesIO(png)).convert("RGB")
+    margin = 8  # the panels sit side by side: keep their pictures apart
+    width = size - 2 * margin
+    height = round(histogram.height * width / histogram.width)
+    histogram = histogram.resize((width, height), Image.NEAREST)
+    panel = Image.new("RGB", (size, size), (41, 41, 43))
+    draw = ImageDraw.Draw(panel)
+    font = ImageFont.truetype(font_file, 15)
+    draw.text((margin, 10), caption, fill=(235, 235, 235), font=font)
+    top = (size - height) // 2
+    panel.paste(histogram, (margin, top))
+    small = ImageFont.truetype(font_file, 13)
+    draw.text(
+        (8, top + height + 8), "θ down from the normal, φ across", fill=(190, 190, 190), font=small
+    )
+    return np.dstack([np.asarray(panel), np.full((size, size), 255, np.uint8)])
