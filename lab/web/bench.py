@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import statistics
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 FIRST_RENDER_TARGET_MS = 300.0
 ALL_VIEWS = "lobe3d,sh,terms,slice,albedo,object"  # with the sphere and the polar plot: every view
@@ -26,6 +26,7 @@ class WebBench:
     renderer: str
     views: str = ""
     offscreen: tuple[str, ...] = ()  # views not wholly inside the window (they would wait)
+    full_render_ms: list[float] = field(default_factory=list)  # every view at full quality
 
     @property
     def p95(self) -> float:
@@ -36,11 +37,17 @@ class WebBench:
         first = statistics.median(self.first_render_ms)
         verdict = lambda ok: "ok" if ok else "MISSED"  # noqa: E731
         first_line = (
-            f"  first render after load: median {first:.0f} ms over "
-            f"{len(self.first_render_ms)} loads (max {max(self.first_render_ms):.0f} ms); "
+            f"  first render after load (every view drawn, the costly ones coarse): median "
+            f"{first:.0f} ms over {len(self.first_render_ms)} loads "
+            f"(max {max(self.first_render_ms):.0f} ms); "
             f"target <= {FIRST_RENDER_TARGET_MS:.0f} ms: "
             f"{verdict(first <= FIRST_RENDER_TARGET_MS)}"
         )
+        if self.full_render_ms:
+            first_line += (
+                f"\n  every view at full quality: median "
+                f"{statistics.median(self.full_render_ms):.0f} ms after load"
+            )
         slider_line = (
             f"  slider frame: p50 {statistics.median(self.frame_ms):.1f} ms, "
             f"p95 {self.p95:.1f} ms over {len(self.frame_ms)} frames; "
@@ -69,8 +76,9 @@ def run(
     size: int = 512, model: str = "phong", loads: int = 3, steps: int = 120, views: str = ALL_VIEWS
 ) -> WebBench:
     """Time page load -> first render of every view (performance.now() at the first finished
-    frame, i.e. since navigation start) and the frame time while a slider moves (the
-    costly views coarse, as while a student drags)."""
+    frame, i.e. since navigation start; the costly views coarse, as while a student drags),
+    -> every view at full quality (the next frame), and the frame time while a slider moves
+    (the costly views coarse)."""
     from lab.web.browser import chromium
     from lab.web.site import export, serving
 
@@ -81,6 +89,7 @@ def run(
         chromium() as browser,
     ):
         first = []
+        full: list[float] = []
         frames: list[float] = []
         renderer = "?"
         for _ in range(max(1, loads)):
@@ -90,6 +99,8 @@ def run(
             page.goto(f"{url}index.html#model={model}&size={size}&light=30,0{shown}")
             page.evaluate("window.brdfLab.ready")
             first.append(page.evaluate("brdfLab.state.firstRenderMs"))
+            page.wait_for_function("brdfLab.state.fullRenderMs !== null")
+            full.append(page.evaluate("brdfLab.state.fullRenderMs"))
             offscreen = page.evaluate(OFFSCREEN_JS)
             if not frames:
                 renderer = page.evaluate(
@@ -101,4 +112,6 @@ def run(
                 page.evaluate(f"brdfLab.sliderFrames(0, '{param}', 10)")  # warm up
                 frames = page.evaluate(f"brdfLab.sliderFrames(0, '{param}', {steps})")
             page.close()
-    return WebBench(size, model, first, frames, renderer, views, tuple(offscreen))
+    return WebBench(
+        size, model, first, frames, renderer, views, tuple(offscreen), full_render_ms=full
+    )

@@ -70,7 +70,8 @@ const lab = {
   ...SETTINGS,
   fast: false, // a slider is moving: the costly views draw a coarse version
   presets: [], // the desktop lab's presets (lab/app/presets/*.toml), from the manifest
-  firstRenderMs: null,
+  firstRenderMs: null, // every view drawn, the costly ones coarse (ms since navigation start)
+  fullRenderMs: null, // every view at full quality
 };
 const DEFAULT_LIGHT = { theta: 45, phi: 0, rgb: [1, 1, 1] };
 
@@ -155,7 +156,8 @@ function compile(gl, fragmentText, source) {
     uniforms[name] = gl.getUniformLocation(program, info.name);
     types[name] = info.type;
   }
-  return { program, uniforms, types };
+  // Guarded loops of the model (unknown: null); with none, no loop can be stopped.
+  return { program, uniforms, types, loops: source ? (source.loops ?? null) : 0 };
 }
 
 /** Sets a uniform the program uses (others the driver dropped are skipped), by its type. */
@@ -198,9 +200,10 @@ function floatTarget(gl, width, height, flag = false) {
   return { texture, fbo, width, height, flag };
 }
 
-/** Where the loop guard stopped a loop in the bound target: {line, x, y} or null. */
-function loopStop(gl, target) {
-  if (!target.flag) return null;
+/** Where the loop guard stopped a loop in the bound target: {line, x, y} or null (not read
+ * back for a program without loops: one wait for the GPU less). */
+function loopStop(gl, target, compiled) {
+  if (!target.flag || compiled.loops === 0) return null;
   const flags = new Float32Array(4 * target.width * target.height);
   gl.readBuffer(gl.COLOR_ATTACHMENT1);
   gl.readPixels(0, 0, target.width, target.height, gl.RGBA, gl.FLOAT, flags);
@@ -490,7 +493,7 @@ class Panel {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     const out = new Float32Array(width * height * 4);
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, out);
-    this.lastLoop = loopStop(gl, target);
+    this.lastLoop = loopStop(gl, target, compiled);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     return out;
   }
@@ -596,7 +599,7 @@ class Panel {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     const out = new Float32Array(4 * POLAR_STEPS);
     gl.readPixels(0, 0, POLAR_STEPS, 1, gl.RGBA, gl.FLOAT, out);
-    this.showLoop(loopStop(gl, this.probeTarget));
+    this.showLoop(loopStop(gl, this.probeTarget, compiled));
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     textures.forEach((t) => gl.deleteTexture(t));
     this.lobe = out;
@@ -1492,8 +1495,9 @@ async function main() {
   fitEmbed();
   if (pending) cancelAnimationFrame(pending);
   pending = 0;
-  // Progressive: the costly views come first coarse, at full quality SETTLE_MS later.
-  moving();
+  // Progressive: every view draws at once, the costly ones coarse (as while a slider moves);
+  // their full quality follows in the next frame, once this one is on screen.
+  lab.fast = lab.views.length > 0;
   renderNow();
   lab.firstRenderMs = performance.now(); // since navigation start
   if (lab.embed) {
@@ -1501,6 +1505,13 @@ async function main() {
     renderNow();
   }
   writeHash();
+  if (!lab.fast) lab.fullRenderMs = lab.firstRenderMs;
+  else {
+    requestAnimationFrame(() => setTimeout(() => {
+      settleNow();
+      lab.fullRenderMs = performance.now();
+    }));
+  }
 }
 
 const toBase64 = (floats) => {

@@ -178,7 +178,9 @@ export class LobeView {
   }
 
   target(gl, width, height) {
-    if (this.fbo?.width === width && this.fbo.height === height) return this.fbo;
+    this.fbos ??= new Map(); // by size: the full one and the coarse one (while the hand moves)
+    const key = `${width}x${height}`;
+    if (this.fbos.has(key)) return this.fbos.get(key);
     const texture = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, texture);
     gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
@@ -192,8 +194,8 @@ export class LobeView {
     gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
     gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.RENDERBUFFER, depth);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    this.fbo = { fbo, width, height };
-    return this.fbo;
+    this.fbos.set(key, { fbo, width, height });
+    return this.fbos.get(key);
   }
 
   render() {
@@ -205,7 +207,11 @@ export class LobeView {
     this.scale = Number.isFinite(shared) && shared > 0 ? shared : 1e-12;
     this.spike = peaks[lab.panels.indexOf(this.panel)]?.[1] ?? 0;
     const grid = lab.fast ? LOBE_FAST_GRID : LOBE_GRID;
-    const { width, height } = this.canvas;
+    // While the hand moves, half the resolution (a quarter of the pixels to draw and read).
+    const step = lab.fast ? 2 : 1;
+    const width = Math.ceil(this.canvas.width / step);
+    const height = Math.ceil(this.canvas.height / step);
+    this.size = [width, height];
     const compiled = this.program();
     const target = this.target(gl, width, height);
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
@@ -261,10 +267,19 @@ export class LobeView {
   draw() {
     const { lab } = this.env;
     const { width, height } = this.canvas;
-    const image = new ImageData(width, height);
-    for (let k = 0; k < width * height * 4; k++) image.data[k] = Math.round(255 * Math.min(Math.max(this.data[k], 0), 1));
+    const image = new ImageData(...this.size);
+    // A clamped array clamps to 0..255 and rounds (NaN gives 0) by itself.
+    const pixels = image.data;
+    const values = this.data;
+    for (let k = 0; k < values.length; k++) pixels[k] = 255 * values[k];
     const ctx = this.canvas.getContext("2d");
-    ctx.putImageData(image, 0, 0);
+    if (this.size[0] === width && this.size[1] === height) ctx.putImageData(image, 0, 0);
+    else {
+      const scratch = new OffscreenCanvas(...this.size);
+      scratch.getContext("2d").putImageData(image, 0, 0);
+      ctx.imageSmoothingEnabled = false;
+      ctx.drawImage(scratch, 0, 0, width, height);
+    }
     const camera = { yaw: lab.lobeYaw, pitch: lab.lobePitch, zoom: lab.lobeZoom };
     const at = (p) => project(camera, p, width, height);
     const line = (a, b, rgb, widthPx, dash = []) => {
@@ -314,7 +329,7 @@ export class LobeView {
   /** The float picture (display values over the background, row 0 at the top), its scale,
    * the camera, and the value at every vertex of the full grid (row i = theta_o). */
   read() {
-    const { width, height } = this.canvas;
+    const [width, height] = this.size;
     const grid = Array.from({ length: LOBE_GRID[0] * LOBE_GRID[1] }, (_, k) => this.peakCache?.texels[4 * k]);
     return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid };
   }

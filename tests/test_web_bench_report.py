@@ -1,0 +1,28 @@
+"""`brdf-lab web-bench`'s report: the figures it prints and how it judges them."""
+
+from __future__ import annotations
+
+from lab.web.bench import WebBench
+
+
+def bench(first, full, frames, offscreen=()) -> WebBench:
+    return WebBench(512, "phong", first, frames, "SwiftShader", "lobe3d,sh", offscreen, full)
+
+
+def test_report_prints_first_and_full_quality_and_judges_the_first():
+    report = bench([250.0, 320.0, 280.0], [700.0, 650.0, 690.0], [10.0] * 95 + [40.0] * 5)
+    lines = report.report().splitlines()
+    assert lines[0].endswith("views sphere, polar, lobe3d, sh:")
+    assert "every view drawn, the costly ones coarse): median 280 ms over 3 loads" in lines[1]
+    assert "(max 320 ms); target <= 300 ms: ok" in lines[1]
+    assert lines[2] == "  every view at full quality: median 690 ms after load"
+    # p95 of 100 frames: the 95th smallest (index 94 of 0..99, rounded) is still 10 ms.
+    assert "p50 10.0 ms, p95 10.0 ms over 100 frames; target p95 <= 33 ms: ok" in lines[3]
+
+
+def test_report_says_missed_and_what_was_off_screen():
+    report = bench([900.0], [], [50.0] * 20, offscreen=("object",)).report()
+    assert "median 900 ms over 1 loads (max 900 ms); target <= 300 ms: MISSED" in report
+    assert "full quality" not in report
+    assert "p95 50.0 ms over 20 frames; target p95 <= 33 ms: MISSED" in report
+    assert report.endswith("NOT all visible (off screen: object)")
