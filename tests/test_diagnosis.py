@@ -63,6 +63,17 @@ CORPUS = [
         "first light",
     ),
     ("04_phong_illumination", "no N.L", [("kd * NoL + ks", "kd + ks")], "N·L"),
+    (
+        "04_phong_illumination",
+        "count ignored",
+        [
+            (
+                "for (int l = 0; l < 8; ++l) {\n        if (l >= count) break;",
+                "for (int l = 0; l < 8; ++l) {",
+            )
+        ],
+        "all 8 slots",
+    ),
     ("04_phong_illumination", "no light colour", [("light_rgb[l] * (", "(")], "colour"),
     (
         "04_phong_illumination",

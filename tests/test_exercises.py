@@ -67,6 +67,7 @@ MISTAKES = [
         "if (l >= 1) break;",
     ),
     ("04_phong_illumination", "lights behind the surface", "if (NoL <= 0.0) continue;", ""),
+    ("04_phong_illumination", "count ignored (all 8 slots lit)", "if (l >= count) break;", ""),
     ("04_phong_illumination", "N.V for N.L (L and V swapped)", "kd * NoL", "kd * dot(N, V)"),
     ("05_ward", "alpha_x and alpha_y swapped", "dot(H, X) / alpha_x", "dot(H, X) / alpha_y"),
     ("05_ward", "missing sqrt", "sqrt(NoL * NoV)", "(NoL * NoV)"),

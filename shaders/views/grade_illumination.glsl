@@ -19,8 +19,11 @@ void main() {
     vec3 dirs[8];
     vec3 rgbs[8];
     for (int i = 0; i < 8; ++i) {
-        dirs[i] = u_light_dir[i];
-        rgbs[i] = u_light_rgb[i];
+        // Past LIGHT_COUNT a slot holds a light that is not in the scene, so that code
+        // which ignores `count` shows it (dark padding would hide the mistake).
+        bool used = i < LIGHT_COUNT;
+        dirs[i] = used ? u_light_dir[i] : normalize(vec3(-0.4, 0.5, 0.75));
+        rgbs[i] = used ? u_light_rgb[i] : vec3(0.9, 0.6, 1.0);
     }
     frag_color = vec4(phong_illumination(N, V, u_ambient, dirs, rgbs, LIGHT_COUNT), 1.0);
 }
