@@ -156,15 +156,19 @@ def _style_polar(ax, theta_i: float, what: str, scale, normalize: bool, fontsize
 
 
 def separate_labels(ax, texts: list) -> None:
-    """Move direction labels toward the centre until no two overlap (and none leaves the axes)."""
+    """Move direction labels toward the centre until none overlaps another or the angle
+    labels at the rim (and none leaves the axes)."""
     fig = ax.figure
+    fig.tight_layout()  # the final layout first: it moves the rim's labels relative to ours
+    fig.draw_without_rendering()  # places the rim's labels
     renderer = fig.canvas.get_renderer()
+    rim = [t.get_window_extent(renderer) for t in ax.get_xticklabels() if t.get_text()]
     for index, text in enumerate(texts):
         radius = 0.8
         while radius > 0.2:
             # A margin: tight_layout may still shrink the axes a little after this.
             box = text.get_window_extent(renderer).expanded(1.25, 1.3)
-            others = [t.get_window_extent(renderer) for t in texts[:index]]
+            others = rim + [t.get_window_extent(renderer) for t in texts[:index]]
             if not any(box.overlaps(o) for o in others):
                 break
             radius -= 0.12

@@ -74,7 +74,9 @@ def _figure_texts(theta_i: float):
     return fig, ax, texts, plt
 
 
-@pytest.mark.parametrize("theta_i", [0.0, 5.0, 8.0, 10.0, 15.0, 30.0, 60.0, 75.0, 85.0, 89.0])
+@pytest.mark.parametrize(
+    "theta_i", [0.0, 5.0, 8.0, 10.0, 15.0, 30.0, 40.0, 45.0, 50.0, 60.0, 75.0, 85.0, 89.0]
+)
 def test_direction_labels_never_collide_or_clip(theta_i):
     fig, ax, texts, plt = _figure_texts(theta_i)
     renderer = fig.canvas.get_renderer()
@@ -86,6 +88,11 @@ def test_direction_labels_never_collide_or_clip(theta_i):
             assert inside and box.y1 <= page.y1, f"{text.get_text()!r} leaves the figure"
         for a, b in itertools.combinations(range(len(boxes)), 2):
             assert not boxes[a].overlaps(boxes[b]), (texts[a].get_text(), texts[b].get_text())
+        # Nor the angles at the rim (at 45° 'incident' ran into '60°' once the layout moved).
+        for tick in ax.get_xticklabels():
+            rim = tick.get_window_extent(renderer)
+            for box, text in zip(boxes, texts, strict=True):
+                assert not box.overlaps(rim), (text.get_text(), tick.get_text())
         # The light is on the right, as on the spheres: the incident line ends right of centre.
         if theta_i >= 8:
             incident = next(t for t in texts if t.get_text() == "incident")
