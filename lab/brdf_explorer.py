@@ -18,7 +18,9 @@ becomes the parameter's description). Text outside the sections and sections oth
 `parameters` and `shader` (e.g. `isFunc`, an importance sampler) are ignored. With
 several shader sections the last one counts. The shaders were written for `#version 410`
 and lean on its implicit int-to-float conversions, so they are compiled with the highest
-GLSL version the context offers; compile errors point at the .brdf file's lines.
+GLSL version the context offers (int arithmetic stays int: `1/4` is 0, as in BRDF
+Explorer; the web page's GLSL ES conversion keeps that, static/explorer.js floatLiterals);
+compile errors point at the .brdf file's lines.
 
 Assembly keeps the file's GLSL and the lab's apart: names the file declares that our
 helpers or the view also declare (`PI`, `sqr`, ...) are renamed on our side, built-in

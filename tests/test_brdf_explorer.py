@@ -62,6 +62,36 @@ def test_values_match_the_formula(app_renderer, gl_clean):
     np.testing.assert_allclose(f, expected[:, None] * [1.0, 0.5, 0.25], rtol=2e-4, atol=1e-6)
 
 
+# Integer arithmetic as BRDF Explorer's GLSL 4.10 does it: 1/4 is 0, 7/2 is 3, -7/2 is -3,
+# 7 % 3 is 1; the int result is converted to float only where it meets a float.
+INT_DIVISION = """\
+analytic
+::begin parameters
+float scale 0 2 1
+::end parameters
+::begin shader
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)
+{
+    int n = 7;
+    float quarter = 1/4;                   // 0
+    float three = float(7/2) + 1/4 * 3.0;  // 3 + 0 * 3.0
+    float mixed = n/2 + (1 + 1/2) * 0.5;   // 3 + 1 * 0.5
+    float rest = -7/2 + 7 % 3;             // -3 + 1
+    float exact = 1.0 / 4 + scale * 3/4;   // 0.25 + (scale * 3) / 4
+    return vec3(quarter + 0.1 * three, 0.1 * mixed + 0.05 * rest, exact) * (1 + 1/2);
+}
+::end shader
+"""
+INT_DIVISION_VALUE = (0.3, 0.25, 1.0)  # with scale = 1
+
+
+def test_int_division_is_glsl_int_division(app_renderer, gl_clean):
+    model = parse_brdf(INT_DIVISION, "ints.brdf")
+    angles = np.array([[30.0, 0.0, 20.0, 180.0], [10.0, 40.0, 60.0, 100.0]])
+    f = app_renderer.eval_angles(model, {}, angles)
+    np.testing.assert_allclose(f, [INT_DIVISION_VALUE] * 2, rtol=1e-6)
+
+
 def test_compile_error_names_the_brdf_file_line(app_renderer):
     bad = BLINN.replace("return tint * val;", "return tint * val")  # line 20 of the file
     model = parse_brdf(bad, "blinn.brdf")

@@ -7,6 +7,7 @@ import base64
 
 import numpy as np
 import pytest
+from test_brdf_explorer import INT_DIVISION, INT_DIVISION_VALUE
 from webpage import open_page
 
 from lab.brdf_explorer import parse_brdf
@@ -181,5 +182,23 @@ def test_brdf_explorer_file_renders_like_desktop(page, app_renderer, tmp_path):
     error = page.evaluate(f"brdfLab.errors({panel})")
     assert "does not compile" in error
     assert "broken_blinn.brdf:21" in error or "broken_blinn.brdf:22" in error, error
+    page.evaluate(f"() => brdfLab.state.panels[{panel}].root.querySelector('button.close').click()")
+    assert page.errors == []
+
+
+def test_brdf_int_division_is_what_brdf_explorer_computes(page, app_renderer, tmp_path):
+    """GLSL ES converts no ints: the page writes the file's literals as floats, yet 1/4
+    stays 0 there as in BRDF Explorer's desktop GLSL (and in the desktop lab)."""
+    path = tmp_path / "ints.brdf"
+    path.write_text(INT_DIVISION)
+    panel = open_file(page, path)
+    assert page.evaluate(f"brdfLab.errors({panel})") == ""
+    lobe = np.array(page.evaluate(f"brdfLab.readLobe({panel})")).reshape(181, 4)[:, :3]
+    front = lobe[100:170]  # theta_o 10..79 deg: both directions above the surface
+    np.testing.assert_allclose(front, np.tile(INT_DIVISION_VALUE, (70, 1)), rtol=1e-6)
+    web = sphere(page, panel)
+    desktop = app_renderer.sphere(parse_brdf(INT_DIVISION, path), {}, light=LIGHT, size=SIZE)
+    on = desktop[..., 3] > 0
+    assert_close(web[on][:, :3], desktop[on][:, :3], "ints.brdf")
     page.evaluate(f"() => brdfLab.state.panels[{panel}].root.querySelector('button.close').click()")
     assert page.errors == []

@@ -9,7 +9,8 @@ import { ModelError, parseModel } from "./header.js";
 const DEBOUNCE_MS = 250;
 
 export class ShaderEditor {
-  /** `env`: { lab, el, tryCompile(panel, model), install(panel, model) } from lab.js. */
+  /** `env`: { lab, el, tryCompile(panel, model), install(panel, model), keepText(panel,
+   * text) } from lab.js. */
   constructor(root, env) {
     this.root = root;
     this.env = env;
@@ -20,6 +21,7 @@ export class ShaderEditor {
     this.title = el("strong", { class: "editor-title" });
     this.status = el("div", { class: "editor-status", role: "status" });
     const open = el("input", { type: "file", accept: ".glsl", hidden: "" });
+    this.fileInput = open;
     open.addEventListener("change", async () => {
       const file = open.files[0];
       if (file) this.editor.setText(await file.text());
@@ -29,7 +31,7 @@ export class ShaderEditor {
     this.host = el("div", { class: "editor-host" });
     root.append(
       el("header", {}, this.title, el("span", { class: "editor-buttons" },
-        button("open…", "replace the text by a .glsl file from your computer", () => open.click()),
+        button("open…", "replace the text by a file from your computer", () => open.click()),
         button("save", "download this text as a .glsl file", () => this.save()),
         button("reset", "go back to the version the lab came with", () => this.reset()),
         button("×", "close the editor (the panel keeps the last version that compiled)", () => this.close()),
@@ -38,14 +40,16 @@ export class ShaderEditor {
     this.editor = createEditor(this.host, { onChange: () => this.schedule() });
   }
 
-  /** Edits the model of `panel`; `original` is what reset goes back to. Exercise mode
-   * gives `build(text)` (the submission as a model), the file's `path` and `onResult(errors)`. */
+  /** Edits the model of `panel`; `original` is what reset goes back to. `build(text)`
+   * makes the model of a text (a library file, an opened file, an exercise's submission);
+   * `path` is the file's name in messages; exercise mode gives `onResult(errors)`. */
   open(panel, original, { build = null, path = null, onResult = null, text = null } = {}) {
     this.panel = panel;
     this.original = original;
     this.build = build;
     this.onResult = onResult;
     this.path = path || panel.model?.path || `${panel.name}.glsl`;
+    this.fileInput.accept = this.path.match(/\.[^./]*$/)?.[0] ?? ".glsl";
     this.title.textContent = `${this.path.split("/").pop()}: edits apply to the ${panel.name} panel as you type`;
     this.root.hidden = false;
     this.editor.setText(text ?? panel.model?.code ?? original);
@@ -59,6 +63,8 @@ export class ShaderEditor {
   }
 
   schedule() {
+    // Kept at once (not after the check): a reload right after typing loses nothing.
+    if (this.panel) this.env.keepText(this.panel, this.editor.text);
     clearTimeout(this.timer);
     this.timer = setTimeout(() => this.check(), DEBOUNCE_MS);
   }
@@ -69,6 +75,7 @@ export class ShaderEditor {
     const panel = this.panel;
     if (!panel) return [];
     const text = this.editor.text;
+    this.env.keepText(panel, text);
     const file = this.path.split("/").pop();
     let errors = [];
     try {

@@ -2,7 +2,8 @@
 // lab/brdf_explorer.py (same messages): the file's GLSL and the lab's stay apart through
 // renames, and the file's BRDF is wrapped to follow the lab's contract. The files were
 // written for desktop GLSL, which turns ints into floats where needed; GLSL ES does not, so
-// integer literals in float expressions are written as floats (floatLiterals).
+// integer literals in float expressions are written as floats, and int divisions (1/4 is 0
+// in desktop GLSL too) stay ints converted as a whole (floatLiterals).
 import { ModelError, splitLines } from "./header.js";
 import { Source, VERSION_LINES, addView, glslDefines, guardLoops, loopGuardPrelude, uniformDeclarations } from "./assemble.js";
 
@@ -153,40 +154,101 @@ function defines(set, prefix) {
   return [sorted.map((n) => `#define ${n} ${prefix}${n}`).join("\n"), sorted.map((n) => `#undef ${n}`).join("\n")];
 }
 
+const MULTIPLY = ["*", "/", "%"];
+const ARITHMETIC = ["+", "-", ...MULTIPLY];
+
 /** Integer literals written as floats, except where an int is meant: array indices, and
  * next to a name declared int (loop counters, `int k = 3`, `k < 8`). Desktop GLSL converts
- * them itself; GLSL ES does not. Comments and lines are kept as they are. */
+ * ints to floats itself; GLSL ES does not. An int expression with a division or remainder
+ * (`1/4`, `(n+1)/2`, `i % 3`) stays int as desktop GLSL computes it (1/4 is 0) and is
+ * converted where it meets floats: `float(1/4)`. Comments and lines are kept as they are. */
 export function floatLiterals(code) {
   const blank = code.replace(/\/\/[^\n]*|\/\*[\s\S]*?\*\//g, (m) => m.replace(/[^\n]/g, " "));
   const ints = names(/\b(?:u?int|[iu]vec[234])\s+([A-Za-z_]\w*)/g, blank);
   const token = /[A-Za-z_]\w*|0[xX][0-9a-fA-F]+[uU]?|\d*\.\d+(?:[eE][+-]?\d+)?|\d+\.?(?:[eE][+-]?\d+)?[fFuU]?|[^\s\w]/g;
   const tokens = [...blank.matchAll(token)].map((m) => ({ text: m[0], at: m.index }));
-  const edits = [];
+  const near = (j) => tokens[j]?.text ?? "";
+  const operator = (text) => /^[-+*/%<>=!&|^,(]$/.test(text);
+  const intName = (text) => ints.has(text) || text === "int" || /^[iu]vec[234]$/.test(text);
+  const depth = []; // brackets open before each token
   let brackets = 0;
   tokens.forEach((t, k) => {
-    if (t.text === "[") brackets++;
     if (t.text === "]") brackets = Math.max(0, brackets - 1);
-    if (!/^\d+$/.test(t.text) || brackets) return;
-    const near = (j) => tokens[j]?.text ?? "";
-    const operator = (text) => /^[-+*/%<>=!&|^,(]$/.test(text);
-    const intName = (text) => ints.has(text) || text === "int" || /^[iu]vec[234]$/.test(text);
-    // `k < 8`, `k += 1`, `int(3)`, `ivec2(1, 2)`, `8 > k`, `3 * k`
-    const before = operator(near(k - 1)) && (intName(near(k - 2)) || (near(k - 1) === "=" && intName(near(k - 3))) ||
-      ["=", "<", ">", "!"].includes(near(k - 2)) && intName(near(k - 3)));
-    const after = operator(near(k + 1)) && near(k + 1) !== "," && near(k + 1) !== "(" && intName(near(k + 2));
-    let depth = 0;
-    let call = "";
-    for (let j = k - 1; j >= 0; j--) { // the function or constructor the literal is an argument of
-      if (near(j) === ")") depth++;
-      else if (near(j) === "(" && depth-- === 0) {
-        call = near(j - 1);
-        break;
-      } else if (near(j) === ";" || near(j) === "{") break;
-    }
-    if (before || after || intName(call)) return;
-    edits.push(t.at + t.text.length);
+    depth[k] = brackets;
+    if (t.text === "[") brackets++;
   });
-  for (const at of edits.reverse()) code = `${code.slice(0, at)}.0${code.slice(at)}`;
+  const closing = (k) => { // the ")" matching the "(" at k, or -1
+    for (let j = k, open = 0; j < tokens.length; j++) {
+      if (near(j) === "(") open++;
+      else if (near(j) === ")" && --open === 0) return j;
+    }
+    return -1;
+  };
+  // A sign is unary after an operator, an opening bracket or the start of a statement.
+  const unary = (k) => ["-", "+"].includes(near(k)) && (k === 0 || /^[-+*/%<>=!&|^,(?:{;[]$/.test(near(k - 1)) ||
+    near(k - 1) === "return");
+  // The end (exclusive) of an int operand starting at k (signs, an int literal or name,
+  // int(...), or a bracketed int expression), or -1.
+  const intOperand = (k) => {
+    while (unary(k)) k++;
+    const t = near(k);
+    let end = -1;
+    if (/^(?:\d+|0[xX][0-9a-fA-F]+)$/.test(t) || (ints.has(t) && near(k + 1) !== "(")) end = k + 1;
+    else if (t === "int" && near(k + 1) === "(") end = closing(k + 1) + 1 || -1;
+    else if (t === "(") {
+      const close = closing(k);
+      for (let j = k + 1; close > 0; j++) { // int operands joined by + - * / %
+        const next = intOperand(j);
+        if (next === close) end = close + 1;
+        if (next < 0 || next === close || !ARITHMETIC.includes(near(next))) break;
+        j = next;
+      }
+    }
+    return end > 0 && !(near(end) === "." || near(end) === "[") ? end : -1;
+  };
+  const leftInt = (k) => operator(near(k - 1)) && (intName(near(k - 2)) || (near(k - 1) === "=" && intName(near(k - 3))) ||
+    (["=", "<", ">", "!"].includes(near(k - 2)) && intName(near(k - 3))));
+  const rightInt = (k) => operator(near(k)) && near(k) !== "," && near(k) !== "(" && intName(near(k + 1));
+  const callOf = (k) => { // the function or constructor the token at k is an argument of
+    for (let j = k - 1, open = 0; j >= 0; j--) {
+      if (near(j) === ")") open++;
+      else if (near(j) === "(" && open-- === 0) return near(j - 1);
+      else if (near(j) === ";" || near(j) === "{") break;
+    }
+    return "";
+  };
+  const intContext = (first, end) => depth[first] > 0 || leftInt(first) || rightInt(end) || intName(callOf(first));
+  // Int expressions with a division: their literals stay ints, the whole is converted.
+  const kept = new Set();
+  const wraps = [];
+  for (let k = 0; k < tokens.length; k++) {
+    const prev = near(k - 1);
+    if (MULTIPLY.includes(prev) || (unary(k - 1) && k > 0)) continue; // (x * 1) / 4 is a float
+    if (near(k) === "(" && /^[A-Za-z_]\w*$/.test(prev) && prev !== "return") continue; // a call's brackets
+    let end = intOperand(k);
+    let divides = false;
+    while (end > 0 && MULTIPLY.includes(near(end))) {
+      const next = intOperand(end + 1);
+      if (next < 0) break;
+      divides ||= near(end) !== "*";
+      end = next;
+    }
+    if (!divides) continue;
+    for (let j = k; j < end; j++) kept.add(j);
+    if (!intContext(k, end)) wraps.push([k, end - 1]);
+    k = end - 1;
+  }
+  const edits = []; // [offset, text inserted there]
+  for (const [first, last] of wraps) {
+    edits.push([tokens[first].at, "float("], [tokens[last].at + tokens[last].text.length, ")"]);
+  }
+  tokens.forEach((t, k) => {
+    if (!/^\d+$/.test(t.text) || depth[k] || kept.has(k)) return;
+    if (leftInt(k) || rightInt(k + 1) || intName(callOf(k))) return; // `k < 8`, `int(3)`, `3 * k`
+    edits.push([t.at + t.text.length, ".0"]);
+  });
+  edits.sort((a, b) => b[0] - a[0]);
+  for (const [at, text] of edits) code = `${code.slice(0, at)}${text}${code.slice(at)}`;
   return code;
 }
 

@@ -9,6 +9,7 @@ import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 import { openModelFile } from "./measured.js";
+import { draft, draftNames, keepDraft, keepFile, keptFiles, storeProblem } from "./store.js";
 import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
@@ -836,14 +837,32 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
 
 // -- the editor (edit.js) -------------------------------------------------------------------
 let editor = null;
-const originals = {}; // model name -> the text it came with (library file or opened file)
+// Model or exercise name -> the text it came with (library file, opened file or stub): the
+// editor's reset goes back to it, and an edited text equal to it is no draft to keep.
+const originals = {};
+const originalText = (name) => originals[name] ?? lab.files[`brdfs/${name}.glsl`] ?? null;
+
+/** The editor's text of a model (or exercise), kept in this browser until it is the
+ * original again (store.js). */
+function keepText(panel, text) {
+  keepDraft(panel.name, text === originalText(panel.name) ? null : text);
+}
+
+/** The model of an edited text, as the editor builds it: an opened file's own rules, a
+ * library file's header checked against its name. */
+function modelOfText(name, text) {
+  const model = lab.models[name];
+  if (model?.rebuild) return model.rebuild(text);
+  return parseModel(text, model?.path || `shaders/brdfs/${name}.glsl`, name);
+}
 
 /** Compiles the sphere program of `model` on the panel's context (throws CompileFailure). */
 function tryCompile(panel, model) {
   if (!panel.gl) return;
   const enums = Object.fromEntries(model.params.filter((p) => p.kind === "enum").map((p) => [p.name,
     p.choices.includes(panel.values[p.name]) ? panel.values[p.name] : p.default]));
-  const source = assembleFragment(model, "sphere", lab.files, { target: "300es", enums, constants: C,
+  const assemble = model.assemble ?? assembleFragment; // a .brdf file assembles by its own rules
+  const source = assemble(model, "sphere", lab.files, { target: "300es", enums, constants: C,
     preamble: `const int LIGHT_COUNT = ${lab.lights.length};` });
   panel.gl.deleteProgram(compile(panel.gl, source.text, source).program);
 }
@@ -873,15 +892,24 @@ function installModel(panel, model) {
 /** Opens the editor on a panel's model; `options` (exercise mode): {path, build(text),
  * onResult(errors)} and `original` the stub. */
 async function openEditor(panel, original = null, options = {}) {
+  const name = panel.name;
+  if (!options.build && lab.exerciseList.some((e) => e.name === name)) return openExercise(name);
+  // A table has no text; a file with a header error has no model to edit yet.
+  const why = panel.model?.notText ?? (panel.model ? "" : `${name} did not open: ${lab.modelErrors[name] || "no such model"}; ` +
+    "fix the file and open it again");
+  if (why) {
+    showTip(why);
+    return;
+  }
   // The editor (CodeMirror, 400 kB) loads when first opened, not with the page.
   if (!editor) {
     const { ShaderEditor } = await import("./edit.js");
-    editor ??= new ShaderEditor($("#editor"), { lab, el, tryCompile, install: installModel });
+    editor ??= new ShaderEditor($("#editor"), { lab, el, tryCompile, install: installModel, keepText });
   }
-  const name = panel.name;
-  originals[name] ??= original ?? lab.files[`brdfs/${name}.glsl`] ?? panel.model?.code ?? "";
-  if (!options.build && exercises?.exercise?.name === name) return exercises.open(name);
-  editor.open(panel, originals[name], options);
+  originals[name] ??= original ?? originalText(name) ?? panel.model?.code ?? "";
+  // The student's unsaved text of an earlier visit comes back; else what the panel shows.
+  const text = draft(name) ?? options.text ?? panel.model?.text ?? panel.model?.code;
+  editor.open(panel, originals[name], { build: (t) => modelOfText(name, t), path: panel.model?.opened, ...options, text });
   $("#editor").scrollIntoView({ block: "nearest" });
 }
 
@@ -1081,6 +1109,15 @@ function addPanel(name, values) {
   return panel;
 }
 
+/** The panels of an address; an exercise's (model=01_lambert) opens that exercise with the
+ * student's kept text. */
+function addPanels(panels) {
+  for (const p of panels) {
+    if (lab.exerciseList.some((e) => e.name === p.name)) openExercise(p.name).then(() => showNotes());
+    else addPanel(p.name, p.values);
+  }
+}
+
 function removePanel(panel) {
   if (lab.panels.length <= 1) return;
   if (editor?.panel === panel) editor.close();
@@ -1157,8 +1194,13 @@ function readHash() {
   // Check each value against its model's header; bad ones are reported and left out.
   for (const panel of panels) {
     const model = lab.models[panel.name];
+    if (lab.exerciseList.some((e) => e.name === panel.name)) continue; // exercise mode
     if (!model) {
-      lab.notes.push(`unknown model ${panel.name}: choose one of ${lab.order.join(", ")}`);
+      // An address keeps a model's name only: an opened file must be in this browser.
+      lab.notes.push(lab.modelErrors[panel.name] ? `${panel.name}: ${lab.modelErrors[panel.name]}`
+        : `unknown model ${panel.name}: it is not in the library and no file of that name was opened in ` +
+        `this browser (an address keeps a model's name, not its file). Open its file (.glsl, .brdf or .binary) ` +
+        `with "open file" to see it, or choose one of ${lab.order.join(", ")}`);
       panel.name = null;
       continue;
     }
@@ -1272,7 +1314,7 @@ function applyHash(hash = location.hash.slice(1), extraNotes = []) {
   lab.notes.push(...extraNotes);
   if (!panels.length) panels.push({ name: defaultModel(), values: {} });
   while (lab.panels.length) lab.panels.pop().destroy();
-  for (const p of panels) addPanel(p.name, p.values);
+  addPanels(panels);
   showNotes();
   showToolbar();
   buildLights();
@@ -1428,11 +1470,9 @@ function buildPage() {
     scheduleRender();
   });
   $("#open-file").addEventListener("change", async (e) => {
-    for (const file of e.target.files) {
-      const name = await openModelFile(file, lab, addModelText);
-      lab.panels.forEach((p) => p.fillPicker());
-      addPanel(name);
-    }
+    for (const file of e.target.files) await openFile(file);
+    e.target.value = ""; // the same file again (fixed on disk) must fire another change
+    showNotes();
     scheduleRender();
   });
   $("#view-choice").append(...Object.entries(VIEW_TITLES).map(([name, title]) => {
@@ -1475,6 +1515,59 @@ function buildPage() {
   addEventListener("hashchange", () => applyHash());
 }
 
+/** Opens a file the student chose and keeps it in this browser for the next visit. Panels
+ * of its name show the new version (none: one is added); the edits of an earlier version
+ * are dropped, and an open editor on it shows the file. */
+async function openFile(file) {
+  const name = await openModelFile(file, lab);
+  originals[name] = lab.models[name]?.text ?? null;
+  keepDraft(name, null);
+  await keepFile(name, file);
+  lab.panels.forEach((p) => p.fillPicker());
+  const showing = lab.panels.filter((p) => p.name === name);
+  for (const panel of showing) panel.setModel(name);
+  if (!showing.length) addPanel(name);
+  if (editor?.panel?.name === name && !editor.root.hidden) await openEditor(editor.panel);
+  if (storeProblem && !lab.notes.includes(storeProblem)) lab.notes.push(storeProblem);
+  return name;
+}
+
+/** The files opened in this browser on earlier visits, before the address is read. */
+async function restoreFiles() {
+  for (const { name, file } of await keptFiles()) {
+    const opened = await openModelFile(file, lab);
+    originals[opened] = lab.models[opened]?.text ?? null;
+    if (opened !== name) lab.notes.push(`${file.name}: kept as ${name}, now opens as ${opened}`);
+  }
+}
+
+/** The editor texts of earlier visits, shown in place of the files they edit. A text that
+ * does not compile (any more) leaves the file's version on show; the editor brings it back. */
+function restoreDrafts() {
+  const panel = lab.panels.find((p) => p.gl);
+  for (const name of draftNames()) {
+    if (!lab.models[name] || lab.exerciseList.some((e) => e.name === name)) continue;
+    const text = draft(name);
+    if (text === originalText(name)) {
+      keepDraft(name, null);
+      continue;
+    }
+    try {
+      const model = modelOfText(name, text);
+      if (panel) tryCompile(panel, model);
+      lab.models[name] = model;
+      for (const p of lab.panels.filter((q) => q.name === name)) p.setModel(name, p.values);
+      if (lab.panels.some((p) => p.name === name)) {
+        lab.notes.push(`${name}: your edited version (kept in this browser) is shown; "edit" then "reset" goes back to the original`);
+      }
+    } catch (err) {
+      if (!(err instanceof ModelError || err instanceof CompileFailure)) throw err;
+      if (lab.panels.some((p) => p.name === name)) lab.notes.push(`${name}: your edited version (kept in this browser) has an error, so the original is shown; ` +
+        `"edit" opens your version (${err.message.split("\n")[0]})`);
+    }
+  }
+}
+
 /** Renders every panel now and waits until the GPU is done; returns milliseconds. */
 function renderNow() {
   const start = performance.now();
@@ -1485,11 +1578,14 @@ function renderNow() {
 
 async function main() {
   await load();
+  await restoreFiles();
   const panels = readHash();
   buildPage();
   showToolbar();
   if (!panels.length) panels.push({ name: defaultModel(), values: {} });
-  for (const p of panels) addPanel(p.name, p.values);
+  addPanels(panels);
+  restoreDrafts();
+  if (storeProblem) lab.notes.push(storeProblem);
   showNotes();
   buildLights();
   fitEmbed();

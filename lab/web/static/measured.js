@@ -94,19 +94,37 @@ export function measuredModel(table, code, name) {
   return model;
 }
 
-/** Opens a file the user chose: a MERL .binary table, a BRDF Explorer .brdf file, or else a
- * model .glsl (`addText(label, code)`); returns the model's name. A file named like a
- * library model gets a suffix, so the library's stays. */
-export async function openModelFile(file, lab, addText) {
-  const binary = /\.binary$/i.test(file.name);
-  if (!binary && !/\.brdf$/i.test(file.name)) return addText(file.name, await file.text());
-  let name = file.name.replace(/\.[^.]*$/, "").replace(/\W/g, "_") || "table";
+// Why a measured table has no text to edit (the edit button says it).
+export const TABLE_NOT_TEXT = "a measured table (.binary) is numbers, not text: there is nothing to edit in the page. " +
+  "Its values are looked up by lab/measured/measured.glsl; to change the BRDF, fit a model to it " +
+  "('brdf-lab fit') or edit the model it was tabulated from";
+
+/** The page's name for an opened file: its stem as an identifier. */
+export function fileModelName(fileName) {
+  let name = fileName.replace(/\.[^.]*$/, "").replace(/\W/g, "_") || "model";
   if (/^\d/.test(name)) name = `m_${name}`;
-  if (`brdfs/${name}.glsl` in lab.files) name = `${name}_${binary ? "measured" : "explorer"}`;
+  return name;
+}
+
+/** Opens a file the user chose: a MERL .binary table, a BRDF Explorer .brdf file or a model
+ * .glsl; returns the model's name. A table or .brdf named like a library model gets a
+ * suffix, so the library's stays; a .glsl of that name replaces it (the student's own
+ * version). The model's `rebuild(text)` makes the model of an edited text (the editor);
+ * a table has `notText` instead. */
+export async function openModelFile(file, lab) {
+  const binary = /\.binary$/i.test(file.name);
+  const explorer = /\.brdf$/i.test(file.name);
+  let name = fileModelName(file.name);
+  if ((binary || explorer) && `brdfs/${name}.glsl` in lab.files) name = `${name}_${binary ? "measured" : "explorer"}`;
+  const rebuild = (text) => {
+    const model = explorer ? parseBrdf(text, file.name) : parseModel(text, file.name);
+    return Object.assign(model, { name, rebuild, opened: file.name, text });
+  };
   try {
     lab.models[name] = binary
-      ? measuredModel(parseMerl(await file.arrayBuffer(), file.name), lab.measuredCode, name)
-      : { ...parseBrdf(await file.text(), file.name), name };
+      ? Object.assign(measuredModel(parseMerl(await file.arrayBuffer(), file.name), lab.measuredCode, name),
+        { notText: TABLE_NOT_TEXT, opened: file.name })
+      : rebuild(await file.text());
     delete lab.modelErrors[name];
   } catch (err) {
     if (!(err instanceof ModelError)) throw err;
