@@ -164,3 +164,42 @@ def test_practice_diagnosis_equals_the_grader(page, tmp_path, exercise, student_
         named += bool(likely(message))
     assert named, f"the grader names no likely mistake for {slip}: pick another slip"
     assert page.errors == []
+
+
+def test_sampler_exercise_shows_what_the_page_checks_and_what_only_the_grader_runs(page, tmp_path):
+    """Exercise 10's checks (chi-square, pdf integral, IBL render) run only in the grader:
+    the page compiles the sampler (errors at the grader's line) and names the others."""
+    exercise = "10_importance_sampling"
+    solution = (ROOT / "solutions" / exercise / "blinn_phong_sampling.glsl").read_text()
+    page.evaluate("n => brdfLab.openExercise(n)", exercise)
+    runs = page.evaluate("brdfLab.exercises.runs")
+    page.evaluate("t => brdfLab.editor.editor.setText(t)", solution)
+    page.wait_for_function(f"brdfLab.exercises.runs > {runs}")
+    section = page.locator("#exercise")
+    compiled = section.locator("li[data-check=compile]")
+    assert compiled.get_attribute("class") == "pass", compiled.inner_text()
+    names = section.locator("li.graded").evaluate_all("rows => rows.map(r => r.dataset.check)")
+    assert names == [
+        "chi_square.glossy",
+        "chi_square.rough",
+        "pdf_integral.views",
+        "ibl_render.grey_room",
+    ]
+    assert "10 more points in checks only the grader runs" in section.inner_text()
+    assert "brdf-lab grade exercises/10_importance_sampling" in section.inner_text()
+    # A mistake the compiler finds: the same file and line as the grader reports.
+    lines = solution.splitlines()
+    line = next(i for i, t in enumerate(lines, 1) if "float pdf_lobe" in t)
+    lines[line] = lines[line] + " undefined_name;"
+    broken = "\n".join(lines) + "\n"
+    path = tmp_path / "blinn_phong_sampling.glsl"
+    path.write_text(broken)
+    graded = grade(exercise, path, tmp_path)
+    assert not any(ok for ok, _ in graded.values())
+    where = re.search(r"blinn_phong_sampling\.glsl:(\d+)", next(iter(graded.values()))[1])
+    runs = page.evaluate("brdfLab.exercises.runs")
+    page.evaluate("t => brdfLab.editor.editor.setText(t)", broken)
+    page.wait_for_function(f"brdfLab.exercises.runs > {runs}")
+    assert compiled.get_attribute("class") == "fail"
+    assert f"blinn_phong_sampling.glsl:{where.group(1)}:" in compiled.inner_text()
+    assert page.errors == []

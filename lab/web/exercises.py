@@ -64,6 +64,26 @@ def check_entry(exercise: Exercise, check, values, stored=None, hints=None) -> d
     return {**entry, **practice}
 
 
+# Why a kind runs only in `brdf-lab grade` (the page says so next to the check).
+GRADER_ONLY = {
+    "chi_square": "Pearson's chi-square test of 100,000 of your samples per view against "
+    "your pdf needs the grader's random numbers and statistics",
+    "pdf_integral": "your pdf integrated over the sphere by the grader's adaptive quadrature",
+    "ibl_render": "a progressive render in an environment, compared ring by ring with the "
+    "reference's noise",
+}
+
+
+def grader_only(exercise: Exercise, values) -> list[dict]:
+    """The checks the page cannot run, with why: the page lists them under its own."""
+    out = []
+    for check in exercise.checks:
+        if kind_of(check).practice(exercise, check, values) is None:
+            why = GRADER_ONLY.get(check.kind, f"the page cannot run {check.kind} checks")
+            out.append({"name": check.name, "kind": check.kind, "points": check.points, "why": why})
+    return out
+
+
 def exercise_entry(exercise: Exercise) -> dict:
     hints = mistakes.read_hints(exercise)
     try:
@@ -73,6 +93,7 @@ def exercise_entry(exercise: Exercise) -> dict:
         stored = {}  # no diagnosis references: the page names no likely mistake
     with np.load(exercise.references / VALUES_FILE) as values:
         entries = [check_entry(exercise, c, values, stored, hints) for c in exercise.checks]
+        only_graded = grader_only(exercise, values)
     checks = [entry for entry in entries if entry is not None]
     return {
         "name": exercise.name,
@@ -82,8 +103,10 @@ def exercise_entry(exercise: Exercise) -> dict:
         "functions": exercise.functions,
         "wrapper": exercise.wrapper,
         "replaces": exercise.replaces,
+        "sampler_for": exercise.sampler_for,  # a sampler exercise: the model it samples
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
+        "grader_only": only_graded,
         "hints": hints,  # the grader's hint of each stored mistake (references/diagnosis.json)
         # Terms seen through macros (09's D, G, F) need a recompile the page does not do:
         # it judges the terms that parameter settings alone show.

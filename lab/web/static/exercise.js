@@ -52,9 +52,19 @@ export function checkFunctions(code, required, label) {
   }
 }
 
+const SAMPLING = "terms/sampling.glsl"; // what a sampler exercise is given (PI, to_world, ...)
+
 /** The student's text as a model every view renders, named after the exercise. */
 export function buildSubmission(exercise, text, path, models) {
   checkFunctions(text, exercise.functions, path);
+  if (exercise.sampler_for) {
+    // A sampler: the library model with the student's functions in front (compiled, type
+    // checked, not called: the page runs none of its checks; the grader does).
+    const model = models[exercise.sampler_for];
+    const includes = model.includes.includes(SAMPLING) ? model.includes : [...model.includes, SAMPLING];
+    return { ...model, name: exercise.name, path, code: `${text.replace(/\n+$/, "")}\n${model.code}`, includes,
+      studentLines: text.split("\n").length };
+  }
   if (exercise.wrapper) {
     const wrapper = models[exercise.wrapper];
     return { ...wrapper, name: exercise.name, path, code: `${text.replace(/\n+$/, "")}\n${wrapper.code}`,
@@ -328,6 +338,7 @@ export class ExerciseMode {
   run(errors = []) {
     const exercise = this.exercise;
     if (!exercise || !this.panel?.model) return [];
+    this.errors = errors;
     this.results = exercise.checks.map((check) => {
       if (errors.length) {
         const first = errors[0];
@@ -380,10 +391,28 @@ export class ExerciseMode {
         canvas(signedDifferenceImage(r.signed, r.covered, size, r.check.threshold),
           `yours − reference (red: too bright, blue: too dark; ±${formatG(r.check.threshold)}/255 allowed)`)));
     }
+    // The checks only the grader runs, named with their points and why.
+    const others = exercise.grader_only || [];
+    const otherPoints = others.reduce((s, c) => s + c.points, 0);
+    if (!exercise.checks.length) {
+      // Nothing to compare here: the page says at least whether the file compiles.
+      const first = this.errors?.[0];
+      rows.push(el("li", { class: first ? "fail" : "pass", "data-check": "compile" },
+        el("span", { class: "mark" }, first ? "✗" : "✓"), " ", el("strong", {}, "compile"), ": ",
+        first ? `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}`
+          : "your functions compile in WebGL (GLSL ES 3.00) with the signatures the grader calls"));
+    }
+    const graded = others.map((c) => el("li", { class: "graded", "data-check": c.name },
+      el("span", { class: "mark" }, "·"), " ", el("strong", {}, c.name), ` (${formatG(c.points)} points): ${c.why}`));
+    const tally = exercise.checks.length ? `${formatG(points)} / ${formatG(exercise.max_points)} points` : "a compile check";
     this.root.replaceChildren(
       el("header", {}, el("strong", {}, exercise.title),
-        el("span", { class: "practice" }, `practice check in the browser, not a grade (brdf-lab grade decides): ${formatG(points)} / ${formatG(exercise.max_points)} points`)),
-      el("ul", { class: "checks" }, ...rows), ...pictures);
+        el("span", { class: "practice" }, `practice check in the browser, not a grade (brdf-lab grade decides): ${tally}` +
+          (others.length ? ` here; ${formatG(otherPoints)} more points in checks only the grader runs` : ""))),
+      el("ul", { class: "checks" }, ...rows), ...pictures,
+      ...(others.length ? [el("p", { class: "grader-only" }, "Only brdf-lab grade runs these checks: ",
+        el("code", {}, `brdf-lab grade exercises/${exercise.name} --submission ${exercise.student_file}`)),
+      el("ul", { class: "checks" }, ...graded)] : []));
     this.root.hidden = false;
   }
 }
