@@ -348,7 +348,6 @@ def test_reflection_equation_demo_converges_to_the_labs_render(deck, deck_page, 
 
     from lab.constants import LUMA
     from lab.ibl.integrator import Environment, render
-    from lab.web.ibl import DEMO_SIZE
     from lab.web.slides import deck_info
 
     (demo,) = deck_info(deck)["ibl"]
@@ -365,9 +364,7 @@ def test_reflection_equation_demo_converges_to_the_labs_render(deck, deck_page, 
     assert uniform["covered"] > 0.7 and mis["samples"] >= 64
     deck_page.screenshot(path=output_dir / f"slide_{demo['slide']:02d}_ibl_demo.png")
     size = frame.evaluate("iblDemo.state.size")
-    image = render(
-        "ggx", {"alpha": 0.1}, Environment.load("sky", DEMO_SIZE), "mis_power", 256, size
-    )
+    image = render("ggx", {"alpha": 0.1}, Environment.load("sky"), "mis_power", 256, size)
     sphere = image[..., 3] > 0
     expected = float((image[..., :3] @ np.array(LUMA))[sphere].mean())
     assert mis["mean"] == pytest.approx(expected, rel=0.02)

@@ -70,8 +70,8 @@ def manifest() -> dict:
 
 
 def environments() -> dict:
-    """The IBL view's procedural maps (lab/ibl/environments.py), served as
-    environments/NAME.f32: float32 RGB, row 0 the zenith."""
+    """The procedural maps (lab/ibl/environments.py) of the IBL view and the deck's Monte
+    Carlo demo, served as environments/NAME.f32: float32 RGB, row 0 the zenith."""
     from lab.ibl.environments import DEFAULT_SIZE, PROCEDURAL
 
     return {"names": list(PROCEDURAL), "width": DEFAULT_SIZE[0], "height": DEFAULT_SIZE[1]}
@@ -115,9 +115,6 @@ def export(outdir: str | Path) -> Path:
     for name in environments()["names"]:
         (maps / f"{name}.f32").write_bytes(environment_bytes(name))
     (outdir / ".nojekyll").write_text("", encoding="utf-8")  # GitHub Pages: serve files as-is
-    from lab.web.ibl import write_environments
-
-    write_environments(outdir)  # the deck's Monte Carlo demo page's maps (ibl_demo.html)
     return outdir / "index.html"
 
 

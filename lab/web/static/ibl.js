@@ -5,20 +5,10 @@
 // Passes of samples add up in a float target (additive blending); the view shows the mean
 // and the sample count, and starts again when anything it depends on changes.
 import { toImage, topFirst } from "./views.js";
+import { STRATEGIES, STRATEGY_TITLES, environmentTextures, loadEnvironment, samplerText, withSampler } from "./iblsource.js";
 
-// As lab/ibl/integrator.py STRATEGIES (the index is the shader's u_strategy).
-export const STRATEGIES = ["uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power"];
-export const STRATEGY_TITLES = {
-  uniform: "uniform hemisphere",
-  cosine: "cosine-weighted",
-  environment: "environment (CDF over the map)",
-  brdf: "BRDF importance",
-  mis_balance: "MIS, balance heuristic",
-  mis_power: "MIS, power heuristic",
-};
-const NO_SAMPLER = `const bool HAS_SAMPLER = false;
-vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
-float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }`;
+export { STRATEGIES, STRATEGY_TITLES, samplerText, samplingTables } from "./iblsource.js";
+
 const ENV_UNIT = 8; // texture units 8..11 hold the environment, as on the desktop
 export const IBL_SIZE = 256; // render size (the desktop's), at most the page's sphere size
 export const MAX_SAMPLES = 1024; // per pixel: the render stops there
@@ -51,113 +41,12 @@ export function iblHash() {
   return same ? "" : `ibl=${IBL.environment},${IBL.strategy},${IBL.rotation}`;
 }
 
-/** The model's BRDF sampler file text, or null (opened files, exercises, models without
- * one), as lab/ibl/integrator.py sampler_path decides. */
-export function samplerText(model, files) {
-  const text = files[`samplers/${model.name}.glsl`];
-  return text !== undefined && model.path === `shaders/brdfs/${model.name}.glsl` ? text : null;
-}
-
 /** What the view says when the strategy needs a sampler the model lacks (integrator.fallback). */
 export function fallback(model, strategy, files) {
   if (!["brdf", "mis_balance", "mis_power"].includes(strategy) || samplerText(model, files) !== null) return null;
   if (model.delta) return null;
   const used = strategy === "brdf" ? "cosine-weighted" : "MIS of cosine-weighted and environment";
   return `${model.name} has no BRDF sampler: ${used} sampling instead`;
-}
-
-/** Puts the sampling terms, the model's sampler and the environment terms (the Monte Carlo
- * estimator) between the model and the template, as lab/ibl/integrator.py does. */
-function withSampler(files) {
-  return (source, model) => {
-    const marker = source.lines.lastIndexOf("#define main lab_view_main");
-    const start = marker >= 0 ? marker : source.origins.findIndex(([f]) => f === "shaders/views/ibl.glsl");
-    const sampler = samplerText(model, files);
-    const lines = [];
-    const origins = [];
-    const add = (text, label) => text.replace(/\r\n?/g, "\n").replace(/\n$/, "").split("\n").forEach((line, k) => {
-      lines.push(line);
-      origins.push([label, k + 1]);
-    });
-    add(files["terms/sampling.glsl"], "shaders/terms/sampling.glsl");
-    add(sampler ?? NO_SAMPLER, sampler === null ? "<no sampler>" : `shaders/samplers/${model.name}.glsl`);
-    add(files["terms/environment.glsl"], "shaders/terms/environment.glsl"); // the estimator
-    source.lines.splice(start, 0, ...lines);
-    source.origins.splice(start, 0, ...origins);
-  };
-}
-
-/** Importance sampling by luminance times sin θ (environments.sampling_tables): the
- * density over (u, v), the CDF over rows and one CDF over the columns of each row. */
-export function samplingTables(image, width, height, luma) {
-  const weight = new Float64Array(width * height);
-  let sum = 0;
-  for (let j = 0; j < height; j++) {
-    const s = Math.sin(((j + 0.5) / height) * Math.PI);
-    for (let i = 0; i < width; i++) {
-      const k = j * width + i;
-      const y = luma[0] * image[3 * k] + luma[1] * image[3 * k + 1] + luma[2] * image[3 * k + 2];
-      weight[k] = Math.max(y, 0) * s;
-      sum += weight[k];
-    }
-  }
-  const sinRow = (j) => Math.sin(((j + 0.5) / height) * Math.PI);
-  if (sum <= 0) for (let k = 0; k < weight.length; k++) weight[k] = sinRow(Math.floor(k / width));
-  let total = 0;
-  for (let k = 0; k < weight.length; k++) total += weight[k];
-  const floor = (1e-4 * total) / weight.length; // keeps every pixel reachable
-  for (let k = 0; k < weight.length; k++) weight[k] += floor * sinRow(Math.floor(k / width));
-  total = 0;
-  const rows = new Float64Array(height);
-  for (let j = 0; j < height; j++) {
-    for (let i = 0; i < width; i++) rows[j] += weight[j * width + i];
-    total += rows[j];
-  }
-  const marginal = new Float32Array(height + 1);
-  let run = 0;
-  for (let j = 0; j < height; j++) marginal[j + 1] = (run += rows[j]) / total;
-  marginal[height] = 1;
-  const conditional = new Float32Array((width + 1) * height);
-  const density = new Float32Array(width * height);
-  for (let j = 0; j < height; j++) {
-    let acc = 0;
-    const last = Math.max(rows[j], 1e-300);
-    for (let i = 0; i < width; i++) {
-      acc += weight[j * width + i];
-      conditional[j * (width + 1) + i + 1] = acc / last;
-      density[j * width + i] = (weight[j * width + i] / total) * width * height;
-    }
-    conditional[j * (width + 1) + width] = 1;
-  }
-  return { density, marginal, conditional };
-}
-
-const maps = new Map(); // environment name -> Promise of {image, width, height, tables}
-
-/** The environment's radiance (float32 RGB, row 0 the zenith) and its sampling tables. */
-export function loadEnvironment(name, info, luma) {
-  if (!maps.has(name)) {
-    maps.set(name, fetch(`environments/${name}.f32`).then(async (response) => {
-      if (!response.ok) throw new Error(`cannot load environments/${name}.f32 (HTTP ${response.status})`);
-      const image = new Float32Array(await response.arrayBuffer());
-      const { width, height } = info;
-      if (image.length !== width * height * 3) throw new Error(`environments/${name}.f32 is not ${width}x${height} RGB floats`);
-      return { image, width, height, tables: samplingTables(image, width, height, luma) };
-    }));
-  }
-  return maps.get(name);
-}
-
-function texture(gl, format, width, height, data) {
-  const t = gl.createTexture();
-  gl.bindTexture(gl.TEXTURE_2D, t);
-  const external = format === gl.RGB32F ? gl.RGB : gl.RED;
-  gl.texImage2D(gl.TEXTURE_2D, 0, format, width, height, 0, external, gl.FLOAT, data);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-  return t;
 }
 
 /** The largest mean luminance over rings of equal view angle of a mean image (RGBA, any
@@ -280,12 +169,7 @@ export class IblView {
       const map = await loadEnvironment(name, lab.environments, C.LUMA);
       const gl = this.panel.gl;
       if (!gl) return null;
-      const { width: w, height: h, tables } = map;
-      this.textures.set(name, {
-        list: [texture(gl, gl.RGB32F, w, h, map.image), texture(gl, gl.R32F, w, h, tables.density),
-          texture(gl, gl.R32F, h + 1, 1, tables.marginal), texture(gl, gl.R32F, w + 1, h, tables.conditional)],
-        size: [w, h],
-      });
+      this.textures.set(name, environmentTextures(gl, map));
     }
     return this.textures.get(name);
   }

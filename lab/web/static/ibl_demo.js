@@ -3,12 +3,13 @@
 // terms/environment.glsl, as lab/ibl/integrator.py assembles it) in
 // WebGL2, accumulated pass after pass into a float target and restarted when a control
 // moves. One panel per strategy in the hash (#model=ggx&alpha=0.1&strategy=uniform&
-// strategy=mis_power&env=sky), at equal samples. The environment and its sampling tables
-// come from lab/web/ibl.py (the page computes none of it).
-import { assembleFragment, vertexSource } from "./assemble.js";
+// strategy=mis_power&env=sky), at equal samples. The program and the environment (its
+// sampling tables and textures) are the web lab's IBL view's own (iblsource.js).
+import { vertexSource } from "./assemble.js";
 import { defaults, parseModel } from "./header.js";
+import { STRATEGIES, environmentTextures, iblSource, loadEnvironment } from "./iblsource.js";
 
-const STRATEGIES = ["uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power"];
+// Short labels for a slide (ibl.js's STRATEGY_TITLES are the lab's longer ones).
 const TITLES = { uniform: "uniform", cosine: "cosine-weighted", environment: "environment CDF",
   brdf: "BRDF sampling", mis_balance: "MIS, balance", mis_power: "MIS, power" };
 const MODELS = ["ggx", "blinn_phong", "phong", "cook_torrance", "ward", "lambert"];
@@ -30,26 +31,9 @@ async function text(path) {
   return response.text();
 }
 
+/** The map's textures (iblsource.js, as the web lab's IBL view makes them). */
 async function environment(name) {
-  if (!envs[name]) {
-    const header = JSON.parse(await text(`ibl/${name}.json`));
-    const response = await fetch(`ibl/${name}.bin`);
-    const data = new Float32Array(await response.arrayBuffer());
-    const [w, h] = [header.width, header.height];
-    const parts = [];
-    let at = 0;
-    for (const length of header.lengths) { parts.push(data.subarray(at, at + length)); at += length; }
-    const tex = (w_, h_, format, internal, array) => {
-      const t = gl.createTexture();
-      gl.bindTexture(gl.TEXTURE_2D, t);
-      gl.texImage2D(gl.TEXTURE_2D, 0, internal, w_, h_, 0, format, gl.FLOAT, array);
-      for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
-      return t;
-    };
-    envs[name] = { size: [w, h], textures: [
-      tex(w, h, gl.RGB, gl.RGB32F, parts[0]), tex(w, h, gl.RED, gl.R32F, parts[1]),
-      tex(h + 1, 1, gl.RED, gl.R32F, parts[2]), tex(w + 1, h, gl.RED, gl.R32F, parts[3])] };
-  }
+  envs[name] ??= environmentTextures(gl, await loadEnvironment(name, manifest.environments, manifest.constants.LUMA));
   return envs[name];
 }
 
@@ -70,28 +54,11 @@ function link(fragment) {
   return program;
 }
 
-/** The IBL program for a model: the lab's assembly, with the sampling terms, the model's
- * sampler and the environment terms put before the view (as lab/ibl/integrator.py does). */
+/** The IBL program for a model, assembled as the web lab's IBL view does (iblsource.js). */
 async function iblProgram(name) {
   const path = `brdfs/${name}.glsl`;
   const model = parseModel(files[path], `shaders/${path}`, name);
-  const source = assembleFragment(model, "ibl", files, { constants: manifest.constants });
-  const sampler = `samplers/${name}.glsl`;
-  const extra = [["terms/sampling.glsl", files["terms/sampling.glsl"]]];
-  if (files[sampler]) extra.push([sampler, files[sampler]]);
-  else extra.push(["<no sampler>", "const bool HAS_SAMPLER = false;\n" +
-    "vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }\n" +
-    "float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }"]);
-  extra.push(["terms/environment.glsl", files["terms/environment.glsl"]]);
-  let at = source.origins.findIndex(([file]) => file === "shaders/views/ibl.glsl");
-  while (at > 0 && source.origins[at - 1][0] === "<loop guard>" && source.lines[at - 1].startsWith("#define main")) at--;
-  const lines = [], origins = [];
-  for (const [label, body] of extra) {
-    body.replace(/\n$/, "").split("\n").forEach((line, i) => { lines.push(line); origins.push([label, i + 1]); });
-  }
-  source.lines.splice(at, 0, ...lines);
-  source.origins.splice(at, 0, ...origins);
-  return { model, program: link(source.text) };
+  return { model, program: link(iblSource(model, files, { constants: manifest.constants }).text) };
 }
 
 const DISPLAY = `#version 300 es
@@ -151,7 +118,7 @@ class Panel {
       else if (p.kind === "color") gl.uniform3fv(at(p.name), v);
       else if (p.kind === "bool") gl.uniform1i(at(p.name), v ? 1 : 0);
     }
-    env.textures.forEach((t, i) => { gl.activeTexture(gl.TEXTURE8 + i); gl.bindTexture(gl.TEXTURE_2D, t); });
+    env.list.forEach((t, i) => { gl.activeTexture(gl.TEXTURE8 + i); gl.bindTexture(gl.TEXTURE_2D, t); });
     ["u_env", "u_density", "u_marginal", "u_conditional"].forEach((n, i) => gl.uniform1i(at(n), 8 + i));
     gl.uniform2f(at("u_env_size"), env.size[0], env.size[1]);
     gl.uniform2f(at("u_resolution"), s.size, s.size);
