@@ -166,40 +166,75 @@ def test_practice_diagnosis_equals_the_grader(page, tmp_path, exercise, student_
     assert page.errors == []
 
 
-def test_sampler_exercise_shows_what_the_page_checks_and_what_only_the_grader_runs(page, tmp_path):
-    """Exercise 10's checks (chi-square, pdf integral, IBL render) run only in the grader:
-    the page compiles the sampler (errors at the grader's line) and names the others."""
-    exercise = "10_importance_sampling"
-    solution = (ROOT / "solutions" / exercise / "blinn_phong_sampling.glsl").read_text()
-    page.evaluate("n => brdfLab.openExercise(n)", exercise)
-    runs = page.evaluate("brdfLab.exercises.runs")
-    page.evaluate("t => brdfLab.editor.editor.setText(t)", solution)
-    page.wait_for_function(f"brdfLab.exercises.runs > {runs}")
+SAMPLER = "10_importance_sampling"
+SAMPLER_FILE = "blinn_phong_sampling.glsl"
+# Slips of exercise 10 (solutions/10_importance_sampling/mistakes.toml): the sampler's
+# exponent (only the chi-square fails) and the pdf's Jacobian (every sampling check fails).
+SAMPLER_SLIPS = [
+    ("1.0 / (ke + 1.0)", "1.0 / (ke + 2.0)"),
+    ("pdf_half_vector(H, N) / (4.0 * VoH)", "pdf_half_vector(H, N)"),
+]
+
+
+def sampling_practice(page, text: str) -> dict[str, tuple[bool, str]]:
+    """The page's sampling checks (run on request) on `text`: {name: (passed, message)}."""
+    practice(page, SAMPLER, text)
+    results = page.evaluate(
+        "brdfLab.exercises.runSampling().map(r => [r.check.name, r.passed, r.message])"
+    )
+    return {name: (passed, message) for name, passed, message in results}
+
+
+def shape(message: str) -> str:
+    """A message with its numbers blanked (the page's GPU rounds the student's pow and
+    sin a little differently: chi-square 533 where the grader has 532)."""
+    return re.sub(r"\d+", "#", message.split(". Likely:")[0])
+
+
+@pytest.mark.parametrize("slip", [None, *SAMPLER_SLIPS])
+def test_sampling_checks_give_the_graders_verdicts(page, tmp_path, slip):
+    """Exercise 10: the chi-square and pdf integral checks run in the page (the grader's
+    directions, random numbers and quadrature) with the grader's verdicts and messages;
+    the IBL render check is named as the grader's alone."""
+    text = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text()
+    if slip:
+        assert slip[0] in text
+        text = text.replace(*slip)
+    path = tmp_path / SAMPLER_FILE
+    path.write_text(text)
+    graded = grade(SAMPLER, path, tmp_path)
+    web = sampling_practice(page, text)
+    assert set(web) == {"chi_square.glossy", "chi_square.rough", "pdf_integral.views"}
+    for name, (passed, message) in web.items():
+        assert passed == graded[name][0], (name, message, graded[name][1])
+        assert shape(message) == shape(graded[name][1]), (name, message, graded[name][1])
+    assert (slip is None) == all(passed for passed, _ in web.values())
     section = page.locator("#exercise")
-    compiled = section.locator("li[data-check=compile]")
-    assert compiled.get_attribute("class") == "pass", compiled.inner_text()
-    names = section.locator("li.graded").evaluate_all("rows => rows.map(r => r.dataset.check)")
-    assert names == [
-        "chi_square.glossy",
-        "chi_square.rough",
-        "pdf_integral.views",
-        "ibl_render.grey_room",
-    ]
-    assert "10 more points in checks only the grader runs" in section.inner_text()
-    assert "brdf-lab grade exercises/10_importance_sampling" in section.inner_text()
-    # A mistake the compiler finds: the same file and line as the grader reports.
+    only = section.locator("li.graded").evaluate_all("rows => rows.map(r => r.dataset.check)")
+    assert only == ["ibl_render.grey_room"]
+    assert "2 more points in checks only the grader runs" in section.inner_text()
+    assert page.errors == []
+
+
+def test_sampling_checks_wait_for_the_button_and_name_compile_errors(page, tmp_path):
+    solution = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text()
+    practice(page, SAMPLER, solution)
+    pending = page.locator("#exercise li.pending")
+    assert pending.count() == 3  # typing does not run seconds of sampling
+    page.locator("#exercise button.run-sampling").click()
+    page.wait_for_function("document.querySelectorAll('#exercise li.pending').length === 0")
+    assert page.locator("#exercise li.pass").count() == 3
+    # A mistake the compiler finds: the grader's file and line, on every check.
     lines = solution.splitlines()
     line = next(i for i, t in enumerate(lines, 1) if "float pdf_lobe" in t)
     lines[line] = lines[line] + " undefined_name;"
     broken = "\n".join(lines) + "\n"
-    path = tmp_path / "blinn_phong_sampling.glsl"
+    path = tmp_path / SAMPLER_FILE
     path.write_text(broken)
-    graded = grade(exercise, path, tmp_path)
-    assert not any(ok for ok, _ in graded.values())
-    where = re.search(r"blinn_phong_sampling\.glsl:(\d+)", next(iter(graded.values()))[1])
-    runs = page.evaluate("brdfLab.exercises.runs")
-    page.evaluate("t => brdfLab.editor.editor.setText(t)", broken)
-    page.wait_for_function(f"brdfLab.exercises.runs > {runs}")
-    assert compiled.get_attribute("class") == "fail"
-    assert f"blinn_phong_sampling.glsl:{where.group(1)}:" in compiled.inner_text()
+    graded = grade(SAMPLER, path, tmp_path)
+    where = re.search(r"blinn_phong_sampling\.glsl:(\d+)", graded["chi_square.glossy"][1])
+    results = practice(page, SAMPLER, broken)
+    for name, (passed, message) in results.items():
+        assert not passed and not graded[name][0]
+        assert f"{SAMPLER_FILE}:{where.group(1)}:" in message, (name, message)
     assert page.errors == []

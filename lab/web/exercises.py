@@ -4,7 +4,9 @@ Everything the grader decides from is computed here by the grader's own code, so
 cannot drift from it: each check's kind (lab.grading.kinds) gives its inputs (the direction
 pairs of probe and polar checks) and committed reference values or images; tolerances,
 points and the stub come from exercise.toml. The page renders the student's file in WebGL
-and compares as the probe, polar and sphere kinds do; a kind it cannot run is left out.
+and compares as the probe, polar and sphere kinds do, and runs the chi-square and pdf
+integral checks of a sampler (static/sampling.js); a kind it cannot run (the IBL render)
+is listed with why, as the grader's alone.
 """
 
 from __future__ import annotations
@@ -66,9 +68,6 @@ def check_entry(exercise: Exercise, check, values, stored=None, hints=None) -> d
 
 # Why a kind runs only in `brdf-lab grade` (the page says so next to the check).
 GRADER_ONLY = {
-    "chi_square": "Pearson's chi-square test of 100,000 of your samples per view against "
-    "your pdf needs the grader's random numbers and statistics",
-    "pdf_integral": "your pdf integrated over the sphere by the grader's adaptive quadrature",
     "ibl_render": "a progressive render in an environment, compared ring by ring with the "
     "reference's noise",
 }

@@ -7,6 +7,7 @@ from __future__ import annotations
 from lab.grading import sampling
 from lab.grading.kinds import CheckKind
 from lab.grading.spec import Check, ExerciseError
+from lab.ibl import chisquare
 
 
 class SampledKind(CheckKind):
@@ -35,3 +36,16 @@ class SampledKind(CheckKind):
 
     def where(self, check: Check, x: int, y: int) -> str:
         return f"sample {y * 1024 + x}"
+
+    def practice_views(self, check: Check) -> dict:
+        """The views as the page's practice mode runs them: angles, V in the local frame
+        and each view's turned shading frame (rows X, Y, N), computed here so that the page
+        samples and integrates exactly the grader's directions (web/static/sampling.js)."""
+        views = self.views(check)
+        return {
+            "views": [list(v) for v in views],
+            "V": [chisquare.view_direction(t, p).tolist() for t, p in views],
+            "frames": [
+                chisquare.random_frame(check.seed * 31 + i).tolist() for i in range(len(views))
+            ],
+        }

@@ -7,6 +7,7 @@ import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { topFirst } from "./views.js";
 import { explain, prepare, rows } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
+import { SAMPLED_KINDS, runSampled } from "./sampling.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -53,16 +54,22 @@ export function checkFunctions(code, required, label) {
 }
 
 const SAMPLING = "terms/sampling.glsl"; // what a sampler exercise is given (PI, to_world, ...)
+// The student's functions as the model's sampler (lab/ibl/integrator.py LOBE_SAMPLER).
+const LOBE_SAMPLER = `
+const bool HAS_SAMPLER = true;
+vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return sample_lobe(u.xy, V, N, X, Y); }
+float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N, X, Y); }`;
+const PENDING = "not run for this version: press “run the sampling checks” (they take a few seconds)";
 
 /** The student's text as a model every view renders, named after the exercise. */
 export function buildSubmission(exercise, text, path, models) {
   checkFunctions(text, exercise.functions, path);
   if (exercise.sampler_for) {
-    // A sampler: the library model with the student's functions in front (compiled, type
-    // checked, not called: the page runs none of its checks; the grader does).
+    // A sampler: the library model with the student's functions in front and made its
+    // sampler, for the sampling views (ibl_sample, ibl_pdf) of sampling.js.
     const model = models[exercise.sampler_for];
     const includes = model.includes.includes(SAMPLING) ? model.includes : [...model.includes, SAMPLING];
-    return { ...model, name: exercise.name, path, code: `${text.replace(/\n+$/, "")}\n${model.code}`, includes,
+    return { ...model, name: exercise.name, path, code: `${text.replace(/\n+$/, "")}\n${model.code}${LOBE_SAMPLER}`, includes,
       studentLines: text.split("\n").length };
   }
   if (exercise.wrapper) {
@@ -344,6 +351,8 @@ export class ExerciseMode {
         const first = errors[0];
         return { check, passed: false, message: `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}` };
       }
+      // The sampling checks run on request (seconds, not every keystroke).
+      if (SAMPLED_KINDS.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
       try {
         const result = runCheck(this.panel, check, this.env);
         if (result.compared && !result.passed) {
@@ -367,12 +376,37 @@ export class ExerciseMode {
     return this.results;
   }
 
+  /** Runs the sampling checks (chi-square, pdf integral) of this version of the file. */
+  runSampling() {
+    for (const result of this.results.filter((r) => r.pending)) {
+      const panel = this.panel;
+      const saved = panel.values;
+      panel.values = checkValues(panel.model, result.check.params);
+      try {
+        Object.assign(result, runSampled(panel, result.check), { pending: false });
+        if (panel.lastLoop) {
+          Object.assign(result, { passed: false, message: `${this.exercise.student_file}:${panel.lastLoop.line}: ` +
+            "a loop did not end: the lab stopped it, so the samples are wrong; check its exit condition" });
+        }
+      } catch (err) {
+        if (!err.errors && !(err instanceof ModelError)) throw err;
+        Object.assign(result, { passed: false, pending: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` });
+      } finally {
+        panel.values = saved;
+      }
+    }
+    this.sampled = (this.sampled || 0) + 1;
+    this.show();
+    return this.results;
+  }
+
   show() {
     const { el } = this.env;
     const exercise = this.exercise;
     const points = this.results.reduce((s, r) => s + (r.passed ? r.check.points : 0), 0);
-    const rows = this.results.map((r) => el("li", { class: r.passed ? "pass" : "fail", "data-check": r.check.name },
-      el("span", { class: "mark" }, r.passed ? "✓" : "✗"), " ",
+    const rows = this.results.map((r) => el("li", { class: r.pending ? "pending" : r.passed ? "pass" : "fail",
+      "data-check": r.check.name },
+      el("span", { class: "mark" }, r.pending ? "…" : r.passed ? "✓" : "✗"), " ",
       el("strong", {}, r.check.name), ` (${formatG(r.passed ? r.check.points : 0)}/${formatG(r.check.points)}): `,
       r.message));
     const pictures = [];
@@ -402,6 +436,14 @@ export class ExerciseMode {
         first ? `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}`
           : "your functions compile in WebGL (GLSL ES 3.00) with the signatures the grader calls"));
     }
+    const pending = this.results.some((r) => r.pending);
+    const sampling = pending ? [el("button", { type: "button", class: "run-sampling",
+      title: "run the chi-square and pdf integral checks on this version (a few seconds)",
+      onclick: (e) => {
+        e.target.disabled = true;
+        e.target.textContent = "running…";
+        setTimeout(() => this.runSampling(), 30); // the button shows it is busy first
+      } }, "run the sampling checks")] : [];
     const graded = others.map((c) => el("li", { class: "graded", "data-check": c.name },
       el("span", { class: "mark" }, "·"), " ", el("strong", {}, c.name), ` (${formatG(c.points)} points): ${c.why}`));
     const tally = exercise.checks.length ? `${formatG(points)} / ${formatG(exercise.max_points)} points` : "a compile check";
@@ -409,7 +451,7 @@ export class ExerciseMode {
       el("header", {}, el("strong", {}, exercise.title),
         el("span", { class: "practice" }, `practice check in the browser, not a grade (brdf-lab grade decides): ${tally}` +
           (others.length ? ` here; ${formatG(otherPoints)} more points in checks only the grader runs` : ""))),
-      el("ul", { class: "checks" }, ...rows), ...pictures,
+      el("ul", { class: "checks" }, ...rows), ...sampling, ...pictures,
       ...(others.length ? [el("p", { class: "grader-only" }, "Only brdf-lab grade runs these checks: ",
         el("code", {}, `brdf-lab grade exercises/${exercise.name} --submission ${exercise.student_file}`)),
       el("ul", { class: "checks" }, ...graded)] : []));

@@ -1,0 +1,331 @@
+// Exercise 10's sampling checks in the page (practice): the chi-square test of the student's
+// samples against their own pdf, and the pdf's integral over the sphere, computed as
+// lab/grading/sampling.py and lab/ibl/chisquare.py compute them. The samples come from the
+// same view template (shaders/views/ibl_sample.glsl) with the same random numbers (the
+// PCG of terms/sampling.glsl, seeded by texel and seed), in the same turned frames
+// (exercises.json carries them from the grader's code); the pdf is integrated per bin by
+// the same adaptive quadrature over ibl_pdf.glsl. The IBL render check stays the grader's.
+export const SAMPLED_KINDS = ["chi_square", "pdf_integral"];
+
+const THETA_BINS = 20;
+const PHI_BINS = 40;
+const BINS = THETA_BINS * PHI_BINS;
+const MIN_EXPECTED = 5;
+const SUB = 8; // cells per bin side before refinement
+const TOLERANCE = 1e-7; // a cell is done when halving it changes its probability less
+const MAX_LEVELS = 16;
+const MAX_CELLS = 400_000;
+const WIDTH = 1024; // texels per row of a pass, as the grader's _texel_pass
+const CHUNK_ROWS = 256; // rows of one pdf pass (one render target size for all of them)
+const TAU = 2 * Math.PI;
+const mod = (a, n) => ((a % n) + n) % n; // Python's %
+
+/** Python's format(x, ".Ng"). */
+function gFormat(x, digits) {
+  if (!Number.isFinite(x)) return Number.isNaN(x) ? "nan" : x > 0 ? "inf" : "-inf";
+  if (x === 0) return "0";
+  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
+  const strip = (t) => (t.includes(".") ? t.replace(/0+$/, "").replace(/\.$/, "") : t);
+  if (exponent < -4 || exponent >= digits) {
+    const [mantissa, exp] = x.toExponential(digits - 1).split("e");
+    return `${strip(mantissa)}e${exp[0] === "-" ? "-" : "+"}${exp.replace(/^[+-]/, "").padStart(2, "0")}`;
+  }
+  return strip(x.toFixed(Math.max(0, digits - 1 - exponent)));
+}
+
+function texture(gl, width, height, data) {
+  const t = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, t);
+  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  return t;
+}
+
+/** A view of one value per texel: `inputs` are (n, 3) directions as flat arrays, bound to
+ * units 0, 1, ...; returns the n RGBA results (row by row, as the grader reads them). */
+function texelPass(panel, view, inputs, uniforms, rows) {
+  const gl = panel.gl;
+  const n = inputs[0].length / 3;
+  const height = rows ?? Math.max(Math.ceil(n / WIDTH), 1);
+  const textures = inputs.map((flat) => {
+    const padded = new Float32Array(WIDTH * height * 4);
+    for (let i = 0; i < n; i++) padded.set(flat.subarray(3 * i, 3 * i + 3), 4 * i);
+    return texture(gl, WIDTH, height, padded);
+  });
+  try {
+    return panel.run(view, WIDTH, height, uniforms, { textures }).subarray(0, 4 * n);
+  } finally {
+    textures.forEach((t) => gl.deleteTexture(t));
+  }
+}
+
+const frameUniforms = (frame) => ({ u_X: frame[0], u_Y: frame[1], u_N: frame[2] });
+
+/** PDF_BRDF at the local directions (cos θ, φ) for one V: the grader's _pdf. */
+function pdfAt(panel, c, p, V, frame) {
+  const out = new Float64Array(c.length);
+  const chunk = WIDTH * CHUNK_ROWS;
+  for (let start = 0; start < c.length; start += chunk) {
+    const n = Math.min(chunk, c.length - start);
+    const L = new Float64Array(3 * n);
+    const Vs = new Float64Array(3 * n);
+    for (let i = 0; i < n; i++) {
+      const cos = c[start + i];
+      const s = Math.sqrt(Math.min(Math.max(1 - cos * cos, 0), 1));
+      L[3 * i] = s * Math.cos(p[start + i]);
+      L[3 * i + 1] = s * Math.sin(p[start + i]);
+      L[3 * i + 2] = cos;
+      Vs.set(V, 3 * i);
+    }
+    const got = texelPass(panel, "ibl_pdf", [new Float32Array(L), new Float32Array(Vs)],
+      { u_L: 0, u_V: 1, ...frameUniforms(frame) }, CHUNK_ROWS);
+    for (let i = 0; i < n; i++) out[start + i] = Number.isFinite(got[4 * i]) ? got[4 * i] : 0;
+  }
+  return out;
+}
+
+/** The pdf integrated over each (cos θ, φ) bin, adaptively: chisquare.bin_probabilities. */
+export function binProbabilities(panel, V, frame) {
+  const dc0 = 2 / (THETA_BINS * SUB);
+  const dp0 = TAU / (PHI_BINS * SUB);
+  const cells = THETA_BINS * SUB * PHI_BINS * SUB;
+  let c0 = new Float64Array(cells);
+  let p0 = new Float64Array(cells);
+  let which = new Int32Array(cells);
+  for (let i = 0, k = 0; i < THETA_BINS * SUB; i++) {
+    for (let j = 0; j < PHI_BINS * SUB; j++, k++) {
+      c0[k] = -1 + i * dc0;
+      p0[k] = j * dp0;
+      which[k] = Math.floor(i / SUB) * PHI_BINS + Math.floor(j / SUB);
+    }
+  }
+  let [dc, dp] = [dc0, dp0];
+  let mid = pdfAt(panel, c0.map((c) => c + dc / 2), p0.map((p) => p + dp / 2), V, frame);
+  const apex = [-V[2], mod(Math.atan2(-V[1], -V[0]), TAU)];
+  const total = new Float64Array(BINS);
+  const offsets = [[0.25, 0.25], [0.75, 0.25], [0.25, 0.75], [0.75, 0.75]];
+  for (let level = 0; level <= MAX_LEVELS; level++) {
+    const m = c0.length;
+    const cc = new Float64Array(4 * m);
+    const pp = new Float64Array(4 * m);
+    for (let k = 0; k < m; k++) {
+      offsets.forEach(([oc, op], o) => {
+        cc[4 * k + o] = c0[k] + oc * dc;
+        pp[4 * k + o] = p0[k] + op * dp;
+      });
+    }
+    const kids = pdfAt(panel, cc, pp, V, frame);
+    const area = dc * dp;
+    const fine = new Float64Array(m);
+    const done = new Uint8Array(m);
+    let open = 0;
+    // Cells near L = -V (a half-vector pdf's singularity) are always refined (_near).
+    const nearOn = Math.abs(apex[0]) <= 0.999;
+    for (let k = 0; k < m; k++) {
+      fine[k] = ((kids[4 * k] + kids[4 * k + 1] + kids[4 * k + 2] + kids[4 * k + 3]) * area) / 4;
+      const near = nearOn && Math.abs(c0[k] + dc / 2 - apex[0]) < 2.5 * dc &&
+        Math.abs(mod(p0[k] + dp / 2 - apex[1] + Math.PI, TAU) - Math.PI) < 2.5 * dp;
+      done[k] = Math.abs(fine[k] - mid[k] * area) <= TOLERANCE && !near ? 1 : 0;
+      if (!done[k]) open++;
+    }
+    if (level === MAX_LEVELS || open * 4 > MAX_CELLS) {
+      done.fill(1);
+      open = 0;
+    }
+    for (let k = 0; k < m; k++) if (done[k]) total[which[k]] += fine[k];
+    if (!open) break;
+    const [nc, np_, nw, nm] = [new Float64Array(4 * open), new Float64Array(4 * open), new Int32Array(4 * open),
+      new Float64Array(4 * open)];
+    for (let k = 0, q = 0; k < m; k++) {
+      if (done[k]) continue;
+      offsets.forEach(([oc, op], o) => {
+        nc[q] = c0[k] + (oc - 0.25) * dc;
+        np_[q] = p0[k] + (op - 0.25) * dp;
+        nw[q] = which[k];
+        nm[q++] = kids[4 * k + o];
+      });
+    }
+    [c0, p0, which, mid] = [nc, np_, nw, nm];
+    dc /= 2;
+    dp /= 2;
+  }
+  return total;
+}
+
+/** P(X >= statistic) for X chi-square with `dof` degrees of freedom (chisquare.chi2_sf). */
+export function chi2Sf(statistic, dof) {
+  const a = dof / 2;
+  const x = statistic / 2;
+  if (x <= 0) return 1;
+  const scale = Math.exp(-x + a * Math.log(x) - logGamma(a));
+  if (x < a + 1) {
+    let term = 1 / a;
+    let total = term;
+    let n = a;
+    for (let i = 0; i < 100_000; i++) {
+      n += 1;
+      term *= x / n;
+      total += term;
+      if (Math.abs(term) < Math.abs(total) * 1e-15) break;
+    }
+    return Math.min(Math.max(1 - total * scale, 0), 1);
+  }
+  const tiny = 1e-300;
+  let b = x + 1 - a;
+  let c = 1 / tiny;
+  let d = 1 / b;
+  let h = d;
+  for (let i = 1; i < 100_000; i++) {
+    const an = -i * (i - a);
+    b += 2;
+    d = an * d + b;
+    if (Math.abs(d) < tiny) d = tiny;
+    c = b + an / c;
+    if (Math.abs(c) < tiny) c = tiny;
+    d = 1 / d;
+    h *= d * c;
+    if (Math.abs(d * c - 1) < 1e-15) break;
+  }
+  return Math.min(Math.max(h * scale, 0), 1);
+}
+
+/** ln Γ(x) for x > 0 (Lanczos, g = 7, n = 9: about 15 digits, as math.lgamma). */
+function logGamma(x) {
+  const g = [0.99999999999980993, 676.5203681218851, -1259.1392167224028, 771.32342877765313,
+    -176.61502916214059, 12.507343278686905, -0.13857109526572012, 9.9843695780195716e-6,
+    1.5056327351493116e-7];
+  if (x < 0.5) return Math.log(Math.PI / Math.sin(Math.PI * x)) - logGamma(1 - x);
+  x -= 1;
+  let sum = g[0];
+  for (let i = 1; i < 9; i++) sum += g[i] / (x + i);
+  const t = x + 7.5;
+  return 0.5 * Math.log(TAU) + (x + 0.5) * Math.log(t) - t + Math.log(sum);
+}
+
+/** Pearson's statistic, degrees of freedom and p-value, low bins pooled with the failed
+ * samples (chisquare.pearson). */
+export function pearson(observed, expected, failed, missing) {
+  const obs = [];
+  const exp = [];
+  let poolO = failed;
+  let poolE = Math.max(missing, 0);
+  for (let i = 0; i < observed.length; i++) {
+    if (expected[i] < MIN_EXPECTED) {
+      poolO += observed[i];
+      poolE += expected[i];
+    } else {
+      obs.push(observed[i]);
+      exp.push(expected[i]);
+    }
+  }
+  if (poolE > 0 || poolO > 0) {
+    obs.push(poolO);
+    exp.push(Math.max(poolE, 1e-9));
+  }
+  let statistic = 0;
+  for (let i = 0; i < obs.length; i++) statistic += (obs[i] - exp[i]) ** 2 / exp[i];
+  const dof = Math.max(obs.length - 1, 1);
+  return { statistic, dof, p: chi2Sf(statistic, dof) };
+}
+
+/** The student's samples at one view: observed counts per bin and the failure counts. */
+function sampleCounts(panel, check, index) {
+  const n = check.options.samples;
+  const V = new Float32Array(3 * n);
+  for (let i = 0; i < n; i++) V.set(check.V[index], 3 * i);
+  const out = texelPass(panel, "ibl_sample", [V], { u_V: 0, u_seed: check.seed + index, ...frameUniforms(check.frames[index]) });
+  const observed = new Float64Array(BINS);
+  let [valid, unit, finite] = [0, 0, 0];
+  for (let i = 0; i < n; i++) {
+    const [x, y, z, pdf] = out.subarray(4 * i, 4 * i + 4);
+    if (![x, y, z, pdf].every(Number.isFinite)) continue;
+    finite++;
+    const length = Math.hypot(x, y, z);
+    if (Math.abs(length - 1) >= 1e-3) continue;
+    unit++;
+    if (!(pdf > 0)) continue;
+    valid++;
+    const cos = Math.min(Math.max(z / length, -1), 1);
+    const phi = mod(Math.atan2(y / length, x / length), TAU);
+    const ti = Math.min(Math.max(Math.floor(((cos + 1) / 2) * THETA_BINS), 0), THETA_BINS - 1);
+    const pi = Math.min(Math.max(Math.floor((phi / TAU) * PHI_BINS), 0), PHI_BINS - 1);
+    observed[ti * PHI_BINS + pi]++;
+  }
+  return { observed, failed: n - valid, notUnit: n - unit, notFinite: n - finite };
+}
+
+function binWords(index) {
+  const ti = Math.floor(index / PHI_BINS);
+  const pi = index % PHI_BINS;
+  const c0 = -1 + (2 * ti) / THETA_BINS;
+  const c1 = c0 + 2 / THETA_BINS;
+  const deg = (r) => (r * 180) / Math.PI;
+  const t0 = deg(Math.acos(Math.min(c1, 1)));
+  const t1 = deg(Math.acos(Math.max(c0, -1)));
+  const p0 = (360 * pi) / PHI_BINS;
+  return `θ ${t0.toFixed(0)}–${t1.toFixed(0)}°, φ ${p0.toFixed(0)}–${(p0 + 360 / PHI_BINS).toFixed(0)}°`;
+}
+
+const where = ([theta, phi]) => `view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}°`;
+
+/** The chi-square check (sampling.chi_square_raw and judge_chi_square). */
+function chiSquare(panel, check) {
+  const samples = check.options.samples;
+  const level = 1 - (1 - check.options.alpha) ** (1 / Math.max(check.views.length, 1)); // Šidák
+  const lines = [];
+  check.views.forEach((view, index) => {
+    const { observed, failed, notUnit, notFinite } = sampleCounts(panel, check, index);
+    const expected = binProbabilities(panel, check.V[index], check.frames[index]).map((v) => v * samples);
+    const mass = expected.reduce((s, v) => s + v, 0);
+    if (notFinite) lines.push(`${where(view)}: ${notFinite} of ${samples} samples are NaN or infinite`);
+    else if (notUnit > 0.001 * samples) {
+      lines.push(`${where(view)}: ${notUnit} of ${samples} sampled directions are not unit vectors (a direction ` +
+        "built from sin and cos has length 1)");
+    } else if (mass < 0.5 * samples) {
+      lines.push(`${where(view)}: your pdf integrates to ${(mass / samples).toFixed(3)} over the sphere, so it ` +
+        "cannot describe your samples (see the pdf_integral check)");
+    } else {
+      const { statistic, dof, p } = pearson(observed, expected, failed, samples - mass);
+      if (p >= level) return;
+      let off = 0;
+      let worst = -1;
+      for (let i = 0; i < BINS; i++) {
+        const score = (observed[i] - expected[i]) ** 2 / Math.max(expected[i], 1);
+        if (score > worst) [worst, off] = [score, i];
+      }
+      lines.push(`${where(view)}: the samples do not follow your pdf (χ² = ${statistic.toFixed(0)} for ${dof} ` +
+        `degrees of freedom, p = ${gFormat(p, 2)} < ${gFormat(level, 2)}); most off: ${binWords(off)} holds ` +
+        `${observed[off]} samples where the pdf expects ${expected[off].toFixed(0)}`);
+    }
+  });
+  if (lines.length) {
+    const more = lines.length - 1;
+    return { passed: false, message: lines[0] + (more ? ` (and ${more} more view${more > 1 ? "s" : ""} fail)` : "") };
+  }
+  const tested = check.views.map(([t]) => `${t.toFixed(0)}°`).join(", ");
+  return { passed: true, message: `samples follow the pdf at every view (θ = ${tested}; p ≥ ${gFormat(level, 2)})` };
+}
+
+/** The pdf integral check (sampling.pdf_integral_raw and judge_pdf_integral). */
+function pdfIntegral(panel, check) {
+  const tolerance = check.options.tolerance;
+  const raw = check.views.map((_, index) => {
+    const sum = binProbabilities(panel, check.V[index], check.frames[index]).reduce((s, v) => s + v, 0);
+    return Number.isNaN(sum) ? Infinity : sum;
+  });
+  const off = raw.map((v, i) => Math.abs(v - check.reference[i]));
+  if (off.every((d) => d <= tolerance)) {
+    return { passed: true, message: `the pdf integrates to ${raw.map((v) => v.toFixed(4)).join(", ")} over the sphere, as it should` };
+  }
+  const worst = off.indexOf(Math.max(...off));
+  const [theta, phi] = check.views[worst];
+  return { passed: false, message: `at the view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}° your pdf integrates to ` +
+    `${raw[worst].toFixed(4)} over the sphere, the solution's to ${check.reference[worst].toFixed(4)} (1 less the ` +
+    `samples whose half vector faces away from V); allowed ±${gFormat(tolerance, 6)}` };
+}
+
+/** Runs a sampling check on the panel (its values already the check's). */
+export function runSampled(panel, check) {
+  return check.kind === "chi_square" ? chiSquare(panel, check) : pdfIntegral(panel, check);
+}
