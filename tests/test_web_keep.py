@@ -178,3 +178,28 @@ def test_an_exercise_and_its_text_come_back_after_a_reload(page):
     results = page.evaluate("brdfLab.exercises.results.map(r => r.passed)")
     assert results and all(results)
     assert page.errors == []
+
+
+def test_a_file_replacing_a_library_model_says_so_and_forget_brings_it_back(page, tmp_path):
+    reload(page, f"model=phong&size={SIZE}&light=30,0")
+    library = sphere(page, 0)
+    mine = tmp_path / "phong.glsl"
+    mine.write_text(MINE)
+    page.set_input_files("#open-file", str(mine))
+    # Kept once the forget button names it (the browser's store writes asynchronously).
+    page.wait_for_function("document.getElementById('forget-files').title.includes('phong.glsl')")
+    reload(page, f"model=phong&model=tint&size={SIZE}&light=30,0")
+    notes = " ".join(page.evaluate("brdfLab.notes()"))
+    assert "your phong.glsl (kept in this browser) is shown instead of the library's" in notes
+    assert np.abs(sphere(page, 0) - library).max() > 0.01  # the student's version
+    forget = page.locator("#forget-files")
+    assert forget.is_visible() and "tint.brdf" in forget.get_attribute("title")
+    with page.expect_navigation():
+        forget.click()
+    page.evaluate("brdfLab.ready")
+    page.evaluate("brdfLab.renderNow()")
+    np.testing.assert_array_equal(sphere(page, 0), library)
+    assert panel_names(page) == ["phong"]  # tint is no longer kept
+    assert any("unknown model tint" in n for n in page.evaluate("brdfLab.notes()"))
+    assert not page.locator("#forget-files").is_visible()
+    assert page.errors == []

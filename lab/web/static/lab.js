@@ -9,7 +9,7 @@ import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
 import { openModelFile } from "./measured.js";
-import { draft, draftNames, keepDraft, keepFile, keptFiles, storeProblem } from "./store.js";
+import { draft, draftNames, forgetFile, keepDraft, keepFile, keptFiles, storeProblem } from "./store.js";
 import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
 
 const C = {}; // the lab's constants (lab/constants.py), from the manifest
@@ -1469,6 +1469,7 @@ function buildPage() {
     addPanel(lab.panels[lab.panels.length - 1]?.name || lab.order[0]);
     scheduleRender();
   });
+  $("#forget-files").addEventListener("click", forgetFiles);
   $("#open-file").addEventListener("change", async (e) => {
     for (const file of e.target.files) await openFile(file);
     e.target.value = ""; // the same file again (fixed on disk) must fire another change
@@ -1522,7 +1523,7 @@ async function openFile(file) {
   const name = await openModelFile(file, lab);
   originals[name] = lab.models[name]?.text ?? null;
   keepDraft(name, null);
-  await keepFile(name, file);
+  if (await keepFile(name, file)) keep(name, file.name);
   lab.panels.forEach((p) => p.fillPicker());
   const showing = lab.panels.filter((p) => p.name === name);
   for (const panel of showing) panel.setModel(name);
@@ -1538,7 +1539,37 @@ async function restoreFiles() {
     const opened = await openModelFile(file, lab);
     originals[opened] = lab.models[opened]?.text ?? null;
     if (opened !== name) lab.notes.push(`${file.name}: kept as ${name}, now opens as ${opened}`);
+    keep(name, file.name);
   }
+}
+
+// The files kept in this browser: model name -> file name ("forget files" drops them).
+const kept = new Map();
+
+/** Records a kept file; one that replaces a library model says so (until forgotten). */
+function keep(name, fileName) {
+  kept.set(name, fileName);
+  if (`brdfs/${name}.glsl` in lab.files) {
+    lab.notes.push(`${name}: your ${fileName} (kept in this browser) is shown instead of the library's ${name}; ` +
+      `"forget files" brings the library's back`);
+  }
+  showForget();
+}
+
+function showForget() {
+  const button = $("#forget-files");
+  button.hidden = !kept.size;
+  button.title = `forget the files this browser keeps for the page (${[...kept.values()].join(", ")}) and ` +
+    "the edits made to them, and reload";
+}
+
+/** Drops every kept file and its edits, and starts the page again without them. */
+async function forgetFiles() {
+  for (const name of kept.keys()) {
+    await forgetFile(name);
+    keepDraft(name, null);
+  }
+  location.reload();
 }
 
 /** The editor texts of earlier visits, shown in place of the files they edit. A text that
