@@ -14,6 +14,7 @@ import numpy as np
 from lab.grading import sampling
 from lab.grading.compare import png
 from lab.grading.kinds.sampled import SampledKind
+from lab.grading.kinds.values import floats_b64
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
 
@@ -64,7 +65,8 @@ class ChiSquareKind(SampledKind):
         return passed(check, message, **extra) if ok else failed(check, message, **extra)
 
     def practice(self, exercise, check: Check, values) -> dict:
-        return self.practice_views(check)
+        # The solution's numbers: the page's explanation compares with them (explain).
+        return {**self.practice_views(check), "solution": floats_b64(values[check.name])}
 
     def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
         samples, views = check.options["samples"], self.views(check)

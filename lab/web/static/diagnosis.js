@@ -273,7 +273,9 @@ export async function prepare(exercise) {
     const stored = { candidates: {}, terms: {} };
     for (const [key, text] of Object.entries(check.diagnosis.candidates)) {
       const data = await inflate(text, image ? Uint8Array : Float32Array);
-      stored.candidates[key] = image ? data : rows(data, check.count);
+      // A sampling check's values stay as the grader stores them (views x numbers).
+      const flat = image || check.kind === "chi_square" || check.kind === "pdf_integral";
+      stored.candidates[key] = flat ? data : rows(data, check.count);
     }
     for (const [name, text] of Object.entries(check.diagnosis.terms)) {
       stored.terms[name] = rows(await inflate(text, Float32Array), check.count);

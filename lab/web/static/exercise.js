@@ -383,7 +383,7 @@ export class ExerciseMode {
       const saved = panel.values;
       panel.values = checkValues(panel.model, result.check.params);
       try {
-        Object.assign(result, runSampled(panel, result.check), { pending: false });
+        Object.assign(result, runSampled(panel, result.check, this.exercise), { pending: false });
         if (panel.lastLoop) {
           Object.assign(result, { passed: false, message: `${this.exercise.student_file}:${panel.lastLoop.line}: ` +
             "a loop did not end: the lab stopped it, so the samples are wrong; check its exit condition" });

@@ -5,6 +5,8 @@
 // PCG of terms/sampling.glsl, seeded by texel and seed), in the same turned frames
 // (exercises.json carries them from the grader's code); the pdf is integrated per bin by
 // the same adaptive quadrature over ibl_pdf.glsl. The IBL render check stays the grader's.
+import { sentence } from "./diagnosis.js";
+
 export const SAMPLED_KINDS = ["chi_square", "pdf_integral"];
 
 const THETA_BINS = 20;
@@ -269,15 +271,68 @@ function binWords(index) {
 
 const where = ([theta, phi]) => `view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}°`;
 
+const ROW = 2 * BINS + 3; // per view: observed, expected, then failed, not unit, not finite
+
+/** Two samplers alike (sampling.same_chi_square): rows of ROW numbers per view. */
+function sameChiSquare(a, b, samples) {
+  if (a.length !== b.length) return false;
+  for (let start = 0; start < a.length; start += ROW) {
+    let pdfOff = 0;
+    for (let i = BINS; i < 2 * BINS; i++) pdfOff += Math.abs(a[start + i] - b[start + i]);
+    if (pdfOff > 0.02 * samples || Math.abs(a[start + 2 * BINS + 1] - b[start + 2 * BINS + 1]) > 0.01 * samples) return false;
+    let statistic = 0;
+    let used = 0;
+    for (let i = 0; i < BINS; i++) {
+      const sum = a[start + i] + b[start + i];
+      if (sum <= 0) continue;
+      statistic += (a[start + i] - b[start + i]) ** 2 / sum;
+      used++;
+    }
+    if (chi2Sf(statistic, Math.max(used - 1, 1)) < 1e-4) return false;
+  }
+  return true;
+}
+
+/** The grader's likely mistake for a failed chi-square check: a stored mistake whose
+ * samples and pdf are alike, else which half differs from the solution's (kinds/chi_square). */
+function explainChiSquare(check, exercise, raw) {
+  const samples = check.options.samples;
+  const hints = exercise.hints || {};
+  for (const [key, values] of Object.entries(check.stored?.candidates || {})) {
+    if (key in hints && sameChiSquare(raw, values, samples)) return sentence(hints[key]);
+  }
+  check.solutionValues ??= new Float32Array(Uint8Array.from(atob(check.solution), (c) => c.charCodeAt(0)).buffer);
+  const expected = check.solutionValues;
+  if (expected.length !== raw.length) return "";
+  let pdfOff = false;
+  const mineOnly = Float64Array.from(raw);
+  for (let start = 0; start < raw.length; start += ROW) {
+    let off = 0;
+    for (let i = BINS; i < 2 * BINS; i++) {
+      off += Math.abs(raw[start + i] - expected[start + i]);
+      mineOnly[start + i] = expected[start + i];
+    }
+    pdfOff ||= off > 0.02 * samples;
+  }
+  const samplesLike = sameChiSquare(mineOnly, expected, samples);
+  if (pdfOff && samplesLike) return sentence("your samples are drawn like the solution's: the pdf is what is wrong");
+  if (!pdfOff && !samplesLike) return sentence("your pdf agrees with the solution's: the sampler is what is wrong");
+  return "";
+}
+
 /** The chi-square check (sampling.chi_square_raw and judge_chi_square). */
-function chiSquare(panel, check) {
+function chiSquare(panel, check, exercise) {
   const samples = check.options.samples;
   const level = 1 - (1 - check.options.alpha) ** (1 / Math.max(check.views.length, 1)); // Šidák
   const lines = [];
+  const raw = new Float64Array(ROW * check.views.length);
   check.views.forEach((view, index) => {
     const { observed, failed, notUnit, notFinite } = sampleCounts(panel, check, index);
     const expected = binProbabilities(panel, check.V[index], check.frames[index]).map((v) => v * samples);
     const mass = expected.reduce((s, v) => s + v, 0);
+    raw.set(observed, ROW * index);
+    raw.set(expected, ROW * index + BINS);
+    raw.set([failed, notUnit, notFinite], ROW * index + 2 * BINS);
     if (notFinite) lines.push(`${where(view)}: ${notFinite} of ${samples} samples are NaN or infinite`);
     else if (notUnit > 0.001 * samples) {
       lines.push(`${where(view)}: ${notUnit} of ${samples} sampled directions are not unit vectors (a direction ` +
@@ -301,14 +356,16 @@ function chiSquare(panel, check) {
   });
   if (lines.length) {
     const more = lines.length - 1;
-    return { passed: false, message: lines[0] + (more ? ` (and ${more} more view${more > 1 ? "s" : ""} fail)` : "") };
+    const message = lines[0] + (more ? ` (and ${more} more view${more > 1 ? "s" : ""} fail)` : "");
+    const likely = explainChiSquare(check, exercise, raw);
+    return { passed: false, message: likely ? `${message}. ${likely}` : message };
   }
   const tested = check.views.map(([t]) => `${t.toFixed(0)}°`).join(", ");
   return { passed: true, message: `samples follow the pdf at every view (θ = ${tested}; p ≥ ${gFormat(level, 2)})` };
 }
 
 /** The pdf integral check (sampling.pdf_integral_raw and judge_pdf_integral). */
-function pdfIntegral(panel, check) {
+function pdfIntegral(panel, check, exercise) {
   const tolerance = check.options.tolerance;
   const raw = check.views.map((_, index) => {
     const sum = binProbabilities(panel, check.V[index], check.frames[index]).reduce((s, v) => s + v, 0);
@@ -320,12 +377,21 @@ function pdfIntegral(panel, check) {
   }
   const worst = off.indexOf(Math.max(...off));
   const [theta, phi] = check.views[worst];
+  // A stored mistake within half the tolerance everywhere (kinds/pdf_integral nearest).
+  let likely = "";
+  let best = tolerance / 2;
+  for (const [key, values] of Object.entries(check.stored?.candidates || {})) {
+    if (!(key in (exercise.hints || {})) || values.length !== raw.length) continue;
+    const distance = Math.max(...raw.map((v, i) => Math.abs(v - values[i])));
+    if (distance <= best) [likely, best] = [sentence(exercise.hints[key]), distance];
+  }
+  const tail = likely ? `. ${likely}` : "";
   return { passed: false, message: `at the view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}° your pdf integrates to ` +
     `${raw[worst].toFixed(4)} over the sphere, the solution's to ${check.reference[worst].toFixed(4)} (1 less the ` +
-    `samples whose half vector faces away from V); allowed ±${gFormat(tolerance, 6)}` };
+    `samples whose half vector faces away from V); allowed ±${gFormat(tolerance, 6)}${tail}` };
 }
 
 /** Runs a sampling check on the panel (its values already the check's). */
-export function runSampled(panel, check) {
-  return check.kind === "chi_square" ? chiSquare(panel, check) : pdfIntegral(panel, check);
+export function runSampled(panel, check, exercise) {
+  return check.kind === "chi_square" ? chiSquare(panel, check, exercise) : pdfIntegral(panel, check, exercise);
 }
