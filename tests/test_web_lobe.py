@@ -134,3 +134,26 @@ def test_camera_and_order_in_the_address_and_presets(page):
     assert state == [1.2, 0.8, ["lobe3d", "sh"]]
     page.evaluate("brdfLab.setSettings({lobeYaw: -0.6, lobePitch: 0.35, lobeZoom: 1, shOrder: 8})")
     assert page.errors == []
+
+
+def test_mirror_spike_and_coarse_frame(page, renderer):
+    """A delta model's spike (the scale's floor) is the desktop's; while the hand moves the
+    lobe draws at half resolution, and full size again once it stops."""
+    page.evaluate("brdfLab.setModel(0, 'mirror')")
+    page.evaluate("brdfLab.setSettings({polarLog: false, cosWeighted: false})")
+    page.evaluate("brdfLab.setViews(['lobe3d'])")
+    _, out = read(page)
+    peak, spike = renderer.lobe_peak(load_model("mirror"), {}, *LIGHT, False, LOBE_GRID)
+    assert spike > 0.5
+    assert out["peak"] == pytest.approx([peak, spike], rel=REL_TOL, abs=1e-7)
+    size = [out["width"], out["height"]]
+    coarse = page.evaluate(
+        "() => { brdfLab.state.fast = true; brdfLab.panel(0).render();"
+        " return brdfLab.panel(0).extra.lobe3d.size; }"
+    )
+    assert coarse == [(size[0] + 1) // 2, (size[1] + 1) // 2]
+    # A reader (still moving) gets the full quality the page settles to.
+    assert [read(page)[1][k] for k in ("width", "height")] == size
+    assert page.evaluate("brdfLab.state.fast") is False
+    page.evaluate("brdfLab.setModel(0, 'phong')")
+    assert page.errors == []

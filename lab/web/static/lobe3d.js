@@ -13,6 +13,40 @@ const SCALE = 0.85;
 const BACKGROUND = [40 / 255, 40 / 255, 44 / 255]; // the desktop lab's
 const MARKS = { N: [0.78, 0.78, 0.78], L: [1.0, 0.82, 0.0], R: [0.47, 0.78, 1.0] };
 
+/** (θo, φo) of every vertex of a rows x cols grid (flat, vertex i * cols + j), as lobe_grid
+ * in shaders/views/lobe_mesh_common.glsl places them (in float, as the GPU does): rows of
+ * θo from the normal to 89.5°, columns of φo around the circle, both refined quadratically
+ * toward the mirror direction of the light at (θi, φi) (radians). */
+export function lobeGridAngles([rows, cols], thetaI, phiI) {
+  const f = Math.fround;
+  const warp = (k, kc, n, center, lo, hi) => {
+    if (k < kc) {
+      const s = f(f(kc - k) / kc);
+      return f(center - f(f(f(center - lo) * s) * s));
+    }
+    if (k > kc) {
+      const s = f(f(k - kc) / (n - 1 - kc));
+      return f(center + f(f(f(hi - center) * s) * s));
+    }
+    return center;
+  };
+  const pi = f(3.14159265358979); // LOBE_PI
+  const top = f((89.5 * Math.PI) / 180);
+  const theta = f(Math.min(Math.max(f(thetaI), 0), f(0.5 * pi)));
+  const kc = Math.floor(f(f((rows - 1) * f(Math.min(f(theta / top), 1))) + 0.5));
+  const phiM = f(f(phiI) + pi);
+  const jc = Math.trunc((cols - 1) / 2);
+  const out = new Float64Array(2 * rows * cols);
+  for (let i = 0; i < rows; i++) {
+    const t = warp(i, kc, rows, Math.min(theta, top), 0, top);
+    for (let j = 0; j < cols; j++) {
+      out[2 * (i * cols + j)] = t;
+      out[2 * (i * cols + j) + 1] = warp(j, jc, cols, phiM, f(phiM - pi), f(phiM + pi));
+    }
+  }
+  return out;
+}
+
 /** Pixel position (x right, y down) of a world point: LobeCamera.project. */
 export function project(camera, p, width, height) {
   const [c, s] = [Math.cos(camera.yaw), Math.sin(camera.yaw)];
@@ -116,19 +150,56 @@ export class LobeView {
   }
 
   /** [largest value shown, delta spike] of this panel's lobe on the full grid (the scale
-   * does not jump while the coarse grid draws), cached until its inputs change. */
+   * does not jump while the coarse grid draws), cached until its inputs change. The values
+   * at the vertices come from the probe program (the polar plot's, already compiled: one
+   * program less to compile at the first draw) at the directions of lobeGridAngles. */
   peak() {
-    const { lab } = this.env;
+    const { lab, C } = this.env;
     const light = lab.lights[0];
     const key = JSON.stringify([this.panel.values, light.theta, light.phi, lab.cosWeighted]);
     if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return this.peakCache.value;
     const [rows, cols] = LOBE_GRID;
-    const texels = this.panel.run("lobe_mesh_peak", cols, rows, this.uniforms(LOBE_GRID),
-      { preamble: this.env.lab.files["views/lobe_mesh_common.glsl"] });
+    const n = rows * cols;
+    const thetaI = Math.fround((light.theta * Math.PI) / 180);
+    const phiI = Math.fround((light.phi * Math.PI) / 180);
+    const angles = lobeGridAngles(LOBE_GRID, thetaI, phiI);
+    const L = new Float32Array(4 * n);
+    const V = new Float32Array(4 * n);
+    const Ld = [Math.sin(thetaI) * Math.cos(phiI), Math.sin(thetaI) * Math.sin(phiI), Math.cos(thetaI)];
+    for (let k = 0; k < n; k++) {
+      const [theta, phi] = [angles[2 * k], angles[2 * k + 1]];
+      L.set(Ld, 4 * k);
+      V.set([Math.sin(theta) * Math.cos(phi), Math.sin(theta) * Math.sin(phi), Math.cos(theta)], 4 * k);
+    }
+    const gl = this.panel.gl;
+    const textures = [L, V].map((data) => {
+      const t = gl.createTexture();
+      gl.bindTexture(gl.TEXTURE_2D, t);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, cols, rows, 0, gl.RGBA, gl.FLOAT, data);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+      return t;
+    });
+    const f = this.panel.run("probe", cols, rows, { u_L: 0, u_V: 1 }, { textures });
+    textures.forEach((t) => gl.deleteTexture(t));
+    // As lobe_mesh_peak.glsl: the luminance (times cos θo when asked), and the largest
+    // value away from grazing, where some models diverge.
+    const values = new Float32Array(n);
+    const grazing = (C.GRAZING_DEG * Math.PI) / 180;
     let peak = 0;
-    for (let k = 0; k < rows * cols; k++) if (Number.isFinite(texels[4 * k + 1])) peak = Math.max(peak, texels[4 * k + 1]);
-    const spike = this.panel.model.delta && Number.isFinite(texels[2]) ? texels[2] : 0;
-    this.peakCache = { model: this.panel.model, key, value: [peak, spike], texels };
+    for (let k = 0; k < n; k++) {
+      let value = C.LUMA[0] * f[4 * k] + C.LUMA[1] * f[4 * k + 1] + C.LUMA[2] * f[4 * k + 2];
+      if (lab.cosWeighted) value *= Math.max(V[4 * k + 2], 0);
+      values[k] = value;
+      if (angles[2 * k] <= grazing && Number.isFinite(value)) peak = Math.max(peak, value);
+    }
+    let spike = 0;
+    if (this.panel.model.delta) {
+      const rgb = this.panel.deltaReflectance(gl, light.theta, light.phi);
+      spike = C.LUMA[0] * rgb[0] + C.LUMA[1] * rgb[1] + C.LUMA[2] * rgb[2];
+      if (!Number.isFinite(spike)) spike = 0;
+    }
+    this.peakCache = { model: this.panel.model, key, value: [peak, spike], values };
     return this.peakCache.value;
   }
 
@@ -330,7 +401,7 @@ export class LobeView {
    * the camera, and the value at every vertex of the full grid (row i = theta_o). */
   read() {
     const [width, height] = this.size;
-    const grid = Array.from({ length: LOBE_GRID[0] * LOBE_GRID[1] }, (_, k) => this.peakCache?.texels[4 * k]);
+    const grid = Array.from({ length: LOBE_GRID[0] * LOBE_GRID[1] }, (_, k) => this.peakCache?.values[k]);
     return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid };
   }
 }
