@@ -948,17 +948,36 @@ function watchVisibility(view) {
 let pending = 0;
 let settle = 0;
 const SETTLE_MS = 200;
+let handMoving = false; // a slider or a drag moved within SETTLE_MS
 
 /** While the hand moves (slider input, drag) the costly views draw coarse; the full
  * version follows SETTLE_MS after the last move. */
 function moving() {
   clearTimeout(settle);
   lab.fast = lab.views.length > 0;
+  handMoving = true;
   settle = setTimeout(() => {
+    handMoving = false;
+    writeHash();
     if (!lab.fast) return;
     lab.fast = false;
     scheduleRender();
   }, SETTLE_MS);
+}
+
+let hashWritten = -Infinity; // performance.now() of the last address update
+let hashTimer = 0;
+const HASH_MS = 250;
+
+/** The address follows the page: at once, but while the hand moves at most every HASH_MS
+ * (and once it stops). An update per frame would cost the frame milliseconds now and
+ * then, and browsers stop taking them after a few hundred in ten seconds. */
+function writeHashSoon() {
+  if (!handMoving) return writeHash();
+  if (hashTimer) return;
+  const wait = hashWritten + HASH_MS - performance.now();
+  if (wait <= 0) writeHash();
+  else hashTimer = setTimeout(writeHash, wait);
 }
 addEventListener("input", (e) => e.target.type === "range" && moving(), true);
 addEventListener("pointermove", (e) => e.buttons && e.target.tagName === "CANVAS" && moving(), true);
@@ -967,12 +986,14 @@ addEventListener("pointermove", (e) => e.buttons && e.target.tagName === "CANVAS
 function settleNow() {
   if (!lab.fast) return;
   clearTimeout(settle);
+  handMoving = false;
   lab.fast = false;
   renderNow();
+  writeHash();
 }
 
 function scheduleRender() {
-  writeHash();
+  writeHashSoon();
   if (!pending) pending = requestAnimationFrame(() => {
     pending = 0;
     renderAll();
@@ -1227,6 +1248,9 @@ function readHash() {
 }
 
 function writeHash() {
+  clearTimeout(hashTimer);
+  hashTimer = 0;
+  hashWritten = performance.now();
   const parts = [];
   for (const panel of lab.panels) {
     if (!panel.model) continue;
@@ -1708,6 +1732,7 @@ window.brdfLab = {
   moveSlider(i, name, position) {
     const value = lab.panels[i].moveSlider(name, position);
     renderNow();
+    writeHash();
     return value;
   },
   /** The float sphere of panel i, base64 float32 RGBA, row 0 at the top. */
