@@ -472,6 +472,24 @@ class Panel {
     return this.programs.get(key);
   }
 
+  /** A float RGBA texture (width x height, from `data()`) kept in `slot` while `key` stays
+   * the same: directions that change only with the light are not uploaded again for every
+   * frame of a moving parameter. */
+  heldTexture(slot, key, width, height, data) {
+    const gl = this.gl;
+    this.held ??= new Map();
+    const held = this.held.get(slot);
+    if (held?.key === key) return held.texture;
+    if (held) gl.deleteTexture(held.texture);
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data());
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    this.held.set(slot, { key, texture });
+    return texture;
+  }
+
   /** Draws `view` at width x height into a float target and reads it back (RGBA floats,
    * row 0 at the bottom). `suffix` renames the parameter uniforms (NAME_base). */
   run(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [] } = {}) {

@@ -160,28 +160,26 @@ export class LobeView {
     if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return this.peakCache.value;
     const [rows, cols] = LOBE_GRID;
     const n = rows * cols;
-    const thetaI = Math.fround((light.theta * Math.PI) / 180);
-    const phiI = Math.fround((light.phi * Math.PI) / 180);
-    const angles = lobeGridAngles(LOBE_GRID, thetaI, phiI);
-    const L = new Float32Array(4 * n);
-    const V = new Float32Array(4 * n);
-    const Ld = [Math.sin(thetaI) * Math.cos(phiI), Math.sin(thetaI) * Math.sin(phiI), Math.cos(thetaI)];
-    for (let k = 0; k < n; k++) {
-      const [theta, phi] = [angles[2 * k], angles[2 * k + 1]];
-      L.set(Ld, 4 * k);
-      V.set([Math.sin(theta) * Math.cos(phi), Math.sin(theta) * Math.sin(phi), Math.cos(theta)], 4 * k);
+    // The grid's directions change with the light only (not while a parameter moves).
+    const lightKey = `${light.theta},${light.phi}`;
+    if (this.directions?.key !== lightKey) {
+      const thetaI = Math.fround((light.theta * Math.PI) / 180);
+      const phiI = Math.fround((light.phi * Math.PI) / 180);
+      const angles = lobeGridAngles(LOBE_GRID, thetaI, phiI);
+      const L = new Float32Array(4 * n);
+      const V = new Float32Array(4 * n);
+      const Ld = [Math.sin(thetaI) * Math.cos(phiI), Math.sin(thetaI) * Math.sin(phiI), Math.cos(thetaI)];
+      for (let k = 0; k < n; k++) {
+        const [theta, phi] = [angles[2 * k], angles[2 * k + 1]];
+        L.set(Ld, 4 * k);
+        V.set([Math.sin(theta) * Math.cos(phi), Math.sin(theta) * Math.sin(phi), Math.cos(theta)], 4 * k);
+      }
+      this.directions = { key: lightKey, angles, L, V };
     }
-    const gl = this.panel.gl;
-    const textures = [L, V].map((data) => {
-      const t = gl.createTexture();
-      gl.bindTexture(gl.TEXTURE_2D, t);
-      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, cols, rows, 0, gl.RGBA, gl.FLOAT, data);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-      return t;
-    });
+    const { angles, L, V } = this.directions;
+    const textures = [this.panel.heldTexture("lobe L", lightKey, cols, rows, () => L),
+      this.panel.heldTexture("lobe V", lightKey, cols, rows, () => V)];
     const f = this.panel.run("probe", cols, rows, { u_L: 0, u_V: 1 }, { textures });
-    textures.forEach((t) => gl.deleteTexture(t));
     // As lobe_mesh_peak.glsl: the luminance (times cos θo when asked), and the largest
     // value away from grazing, where some models diverge.
     const values = new Float32Array(n);
@@ -195,7 +193,7 @@ export class LobeView {
     }
     let spike = 0;
     if (this.panel.model.delta) {
-      const rgb = this.panel.deltaReflectance(gl, light.theta, light.phi);
+      const rgb = this.panel.deltaReflectance(this.panel.gl, light.theta, light.phi);
       spike = C.LUMA[0] * rgb[0] + C.LUMA[1] * rgb[1] + C.LUMA[2] * rgb[2];
       if (!Number.isFinite(spike)) spike = 0;
     }

@@ -18,15 +18,25 @@ export function gaussLegendre(n) {
     let z = Math.cos((Math.PI * (k + 0.75)) / (n + 0.5));
     let dp = 0;
     for (let it = 0; it < 100; it++) {
-      let [p0, p1] = [1, z];
-      for (let l = 2; l <= n; l++) [p0, p1] = [p1, ((2 * l - 1) * z * p1 - (l - 1) * p0) / l];
+      let p0 = 1;
+      let p1 = z;
+      for (let l = 2; l <= n; l++) {
+        const p2 = ((2 * l - 1) * z * p1 - (l - 1) * p0) / l;
+        p0 = p1;
+        p1 = p2;
+      }
       dp = (n * (z * p1 - p0)) / (z * z - 1);
       const step = p1 / dp;
       z -= step;
       if (Math.abs(step) < 1e-16) break;
     }
-    let [p0, p1] = [1, z];
-    for (let l = 2; l <= n; l++) [p0, p1] = [p1, ((2 * l - 1) * z * p1 - (l - 1) * p0) / l];
+    let p0 = 1;
+    let p1 = z;
+    for (let l = 2; l <= n; l++) {
+      const p2 = ((2 * l - 1) * z * p1 - (l - 1) * p0) / l;
+      p0 = p1;
+      p1 = p2;
+    }
     dp = (n * (z * p1 - p0)) / (z * z - 1);
     x[n - 1 - k] = z;
     x[k] = -z;
@@ -125,10 +135,12 @@ export function quadrature() {
       const m = index - l * l - l;
       rows[i * K + o] = 2 * solid * Y[l * l + l + Math.abs(m)];
     });
+    const sine = Math.sin(theta);
     for (let j = 0; j < nPhi; j++) {
       const k = i * nPhi + j;
-      const phi = ((j + 0.5) * 2 * Math.PI) / nPhi;
-      V.set([Math.sin(theta) * Math.cos(phi), Math.sin(theta) * Math.sin(phi), c, 0], 4 * k);
+      V[4 * k] = sine * cos[j * M + 1];
+      V[4 * k + 1] = sine * sin[j * M + 1];
+      V[4 * k + 2] = c;
       weight[k] = solid;
     }
   }
@@ -215,20 +227,15 @@ export class SHView {
     if (this.cache?.model !== this.panel.model || this.cache.key !== key) {
       const { V, n } = quadrature();
       const [nTheta, nPhi] = GRID;
-      const gl = this.panel.gl;
-      const L = new Float32Array(4 * n);
       const Ld = direction(light.theta, light.phi);
-      for (let k = 0; k < n; k++) L.set(Ld, 4 * k);
-      const textures = [L, V].map((data) => {
-        const t = gl.createTexture();
-        gl.bindTexture(gl.TEXTURE_2D, t);
-        gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, nPhi, nTheta, 0, gl.RGBA, gl.FLOAT, data);
-        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-        return t;
-      });
+      const lightL = () => {
+        const L = new Float32Array(4 * n);
+        for (let k = 0; k < n; k++) L.set(Ld, 4 * k);
+        return L;
+      };
+      const textures = [this.panel.heldTexture("sh L", `${light.theta},${light.phi}`, nPhi, nTheta, lightL),
+        this.panel.heldTexture("sh V", "grid", nPhi, nTheta, () => V)];
       const f = this.panel.run("probe", nPhi, nTheta, { u_L: 0, u_V: 1 }, { textures });
-      textures.forEach((t) => gl.deleteTexture(t));
       const C = this.env.C;
       const lobe = new Float64Array(n);
       for (let k = 0; k < n; k++) {
