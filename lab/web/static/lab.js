@@ -19,6 +19,10 @@ const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
 const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
 const SPHERE_FAST_MIN = 384; // spheres this large draw at half resolution while a slider moves
+// The order the views draw in within a frame (Panel.render): the JS of each overlaps the GPU
+// work of the next (sh's series with the lobe mesh's draw, the lobe's picture with the slice,
+// the slice's with the albedo, the albedo's with the object).
+const FRAME_ORDER = ["terms", "sh", "lobe3d", "slice", "albedo", "object"];
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
 // Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
@@ -492,7 +496,12 @@ class Panel {
 
   /** Draws `view` at width x height into a float target and reads it back (RGBA floats,
    * row 0 at the bottom). `suffix` renames the parameter uniforms (NAME_base). */
-  run(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [] } = {}) {
+  run(view, width, height, uniforms, options = {}) {
+    return this.collect(this.draw(view, width, height, uniforms, options));
+  }
+
+  /** Queues the draw of run() without waiting for it: a pass for collect() to read. */
+  draw(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [] } = {}) {
     const gl = this.gl;
     const compiled = this.program(view, preamble, transform);
     // The target first: making one binds its textures, which must not replace the inputs.
@@ -510,6 +519,15 @@ class Panel {
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
     gl.viewport(0, 0, width, height);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.flush(); // to the GPU now: it works while the page's JS goes on
+    return { target, compiled, width, height };
+  }
+
+  /** Waits for a pass of draw() and reads it back (RGBA floats, row 0 at the bottom). */
+  collect({ target, compiled, width, height }) {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
     const out = new Float32Array(width * height * 4);
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, out);
     this.lastLoop = loopStop(gl, target, compiled);
@@ -535,11 +553,32 @@ class Panel {
     try {
       this.renderSphere(gl);
       this.renderPolar(gl);
-      for (const name of lab.views) {
-        const view = this.extra[name];
-        // Off screen a view waits: it draws when scrolled into sight (watchVisibility).
-        if (view) view.stale = view.offscreen === true;
-        if (view && !view.stale) view.render();
+      // A view in three steps (submit: queue its GPU work; collect: wait for it; process: its
+      // picture, in JS) lets the previous view's JS run while the GPU works on this one
+      // (SwiftShader compiles a program at its first draw). The order pairs heavy JS with
+      // heavy GPU work; the page shows the views in lab.views' order.
+      let process = null;
+      try {
+        const order = [...FRAME_ORDER.filter((n) => lab.views.includes(n)), ...lab.views.filter((n) => !FRAME_ORDER.includes(n))];
+        for (const name of order) {
+          const view = this.extra[name];
+          // Off screen a view waits: it draws when scrolled into sight (watchVisibility).
+          if (view) view.stale = view.offscreen === true;
+          if (!view || view.stale) continue;
+          if (!view.submit) {
+            process?.();
+            process = null;
+            view.render();
+            continue;
+          }
+          view.submit();
+          process?.();
+          process = null;
+          view.collect();
+          process = () => view.process();
+        }
+      } finally {
+        process?.();
       }
       this.showError("");
     } catch (err) {

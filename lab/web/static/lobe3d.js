@@ -268,6 +268,14 @@ export class LobeView {
   }
 
   render() {
+    this.submit();
+    this.collect();
+    this.process();
+  }
+
+  /** The scale (every panel's peak: small probes, read at once), then the mesh's draw,
+   * queued. */
+  submit() {
     const { lab } = this.env;
     const gl = this.panel.gl;
     // One scale for every panel: the largest value (or spike) of all of them.
@@ -325,10 +333,22 @@ export class LobeView {
     gl.disable(gl.DEPTH_TEST);
     gl.disable(gl.BLEND);
     gl.frontFace(gl.CCW);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.bindVertexArray(this.panel.vao);
+    gl.flush(); // to the GPU now: it works while the page's JS goes on
+    this.pass = target;
+  }
+
+  collect() {
+    const gl = this.panel.gl;
+    const { fbo, width, height } = this.pass;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
     this.data = new Float32Array(width * height * 4);
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, this.data);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.bindVertexArray(this.panel.vao);
+  }
+
+  process() {
     this.draw();
   }
 

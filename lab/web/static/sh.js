@@ -215,34 +215,54 @@ export class SHView {
   }
 
   render() {
+    this.submit();
+    this.collect();
+    this.process();
+  }
+
+  /** Queues the probe of the lobe on the quadrature grid, unless the series is cached. */
+  submit() {
     const { lab, direction } = this.env;
     this.order.value = lab.shOrder;
     const light = lab.lights[0];
+    this.pass = null;
+    this.key = JSON.stringify([this.panel.values, light.theta, light.phi]);
+    if (this.panel.model.delta || (this.cache?.model === this.panel.model && this.cache.key === this.key)) return;
+    const { V, n } = quadrature();
+    const [nTheta, nPhi] = GRID;
+    const Ld = direction(light.theta, light.phi);
+    const lightL = () => {
+      const L = new Float32Array(4 * n);
+      for (let k = 0; k < n; k++) L.set(Ld, 4 * k);
+      return L;
+    };
+    const textures = [this.panel.heldTexture("sh L", `${light.theta},${light.phi}`, nPhi, nTheta, lightL),
+      this.panel.heldTexture("sh V", "grid", nPhi, nTheta, () => V)];
+    this.pass = this.panel.draw("probe", nPhi, nTheta, { u_L: 0, u_V: 1 }, { textures });
+  }
+
+  collect() {
+    this.probed = this.pass ? this.panel.collect(this.pass) : null;
+  }
+
+  /** Projects a new lobe (the values of fr cos θo on the grid) and draws. */
+  process() {
     this.data = null;
     if (this.panel.model.delta) {
       this.draw();
       return;
     }
-    const key = JSON.stringify([this.panel.values, light.theta, light.phi]);
-    if (this.cache?.model !== this.panel.model || this.cache.key !== key) {
+    const f = this.probed;
+    if (f) {
       const { V, n } = quadrature();
-      const [nTheta, nPhi] = GRID;
-      const Ld = direction(light.theta, light.phi);
-      const lightL = () => {
-        const L = new Float32Array(4 * n);
-        for (let k = 0; k < n; k++) L.set(Ld, 4 * k);
-        return L;
-      };
-      const textures = [this.panel.heldTexture("sh L", `${light.theta},${light.phi}`, nPhi, nTheta, lightL),
-        this.panel.heldTexture("sh V", "grid", nPhi, nTheta, () => V)];
-      const f = this.panel.run("probe", nPhi, nTheta, { u_L: 0, u_V: 1 }, { textures });
       const C = this.env.C;
       const lobe = new Float64Array(n);
       for (let k = 0; k < n; k++) {
         const g = (C.LUMA[0] * f[4 * k] + C.LUMA[1] * f[4 * k + 1] + C.LUMA[2] * f[4 * k + 2]) * V[4 * k + 2];
         lobe[k] = Number.isFinite(g) ? g : 0; // a division by zero would swamp every coefficient
       }
-      this.cache = { model: this.panel.model, key, ...analyse(lobe) };
+      this.cache = { model: this.panel.model, key: this.key, ...analyse(lobe) };
+      this.probed = null;
     }
     this.data = this.cache;
     this.draw();

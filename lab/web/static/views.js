@@ -117,10 +117,25 @@ export class SliceView {
   }
 
   render() {
+    this.submit();
+    this.collect();
+    this.process();
+  }
+
+  submit() {
     const { lab } = this.env;
     const n = Math.min(lab.size, lab.fast ? SLICE_FAST : SLICE_MAX);
     this.size = n;
-    this.data = this.panel.run("slice", n, n, { u_resolution: [n, n], u_phi_d: (lab.phiD * Math.PI) / 180 });
+    this.pass = this.panel.draw("slice", n, n, { u_resolution: [n, n], u_phi_d: (lab.phiD * Math.PI) / 180 });
+  }
+
+  collect() {
+    this.data = this.panel.collect(this.pass);
+  }
+
+  process() {
+    const { lab } = this.env;
+    const n = this.size;
     const canvas = this.canvas;
     const ctx = canvas.getContext("2d");
     const f = font(ctx, canvas);
@@ -169,12 +184,27 @@ export class AlbedoView {
   }
 
   render() {
+    this.submit();
+    this.collect();
+    this.process();
+  }
+
+  submit() {
     const { lab } = this.env;
-    const a = lab.fast ? ALBEDO_FAST : ALBEDO;
-    const raw = this.panel.run("albedo", a.wedges, a.count, {
+    const a = (this.quality = lab.fast ? ALBEDO_FAST : ALBEDO);
+    this.pass = this.panel.draw("albedo", a.wedges, a.count, {
       u_theta0: (a.theta0 * Math.PI) / 180, u_theta_step: (a.step * Math.PI) / 180,
       u_phi_i: (lab.lights[0].phi * Math.PI) / 180, u_samples: a.samples, u_wedges: a.wedges,
     });
+  }
+
+  collect() {
+    this.raw = this.panel.collect(this.pass);
+  }
+
+  process() {
+    const a = this.quality;
+    const raw = this.raw;
     // The host sums the wedges (in double precision, as numpy does).
     this.thetas = [];
     this.rgb = [];
@@ -279,6 +309,12 @@ export class ObjectView {
   }
 
   render() {
+    this.submit();
+    this.collect();
+    this.process();
+  }
+
+  submit() {
     const { lab, C, direction } = this.env;
     const n = lab.fast ? Math.min(lab.size, OBJECT_FAST) : lab.size;
     const dirs = [];
@@ -292,9 +328,18 @@ export class ObjectView {
     // The shape and the step are constants of the program (one per choice), not uniforms.
     const preamble = [`const int LIGHT_COUNT = ${lab.lights.length};`,
       `const int u_shape = ${Math.trunc(lab.shape) || 0};`, `const int u_mode = ${Math.trunc(lab.mode) || 0};`].join("\n");
-    this.data = this.panel.run("object", n, n, {
+    this.pass = this.panel.draw("object", n, n, {
       u_resolution: [n, n], u_light_dir: dirs, u_light_rgb: rgb, u_ambient: lab.ambient, u_yaw: lab.yaw, u_pitch: lab.pitch,
     }, { preamble, transform: objectProgram, suffix: "_base" });
+  }
+
+  collect() {
+    this.data = this.panel.collect(this.pass);
+  }
+
+  process() {
+    const { lab } = this.env;
+    const n = this.size;
     const ctx = this.canvas.getContext("2d");
     if (n === this.canvas.width) ctx.putImageData(toImage(this.data, n, n, lab.exposure), 0, 0);
     else {
