@@ -4,9 +4,9 @@ Everything the grader decides from is computed here by the grader's own code, so
 cannot drift from it: each check's kind (lab.grading.kinds) gives its inputs (the direction
 pairs of probe and polar checks) and committed reference values or images; tolerances,
 points and the stub come from exercise.toml. The page renders the student's file in WebGL
-and compares as the probe, polar and sphere kinds do, and runs the chi-square and pdf
-integral checks of a sampler (static/sampling.js); a kind it cannot run (the IBL render)
-is listed with why, as the grader's alone.
+and compares as the probe, polar and sphere kinds do, and runs a sampler's chi-square,
+pdf integral and IBL render checks (static/sampling.js); a kind it cannot run is listed
+as the grader's alone.
 """
 
 from __future__ import annotations
@@ -66,19 +66,12 @@ def check_entry(exercise: Exercise, check, values, stored=None, hints=None) -> d
     return {**entry, **practice}
 
 
-# Why a kind runs only in `brdf-lab grade` (the page says so next to the check).
-GRADER_ONLY = {
-    "ibl_render": "a progressive render in an environment, compared ring by ring with the "
-    "reference's noise",
-}
-
-
 def grader_only(exercise: Exercise, values) -> list[dict]:
     """The checks the page cannot run, with why: the page lists them under its own."""
     out = []
     for check in exercise.checks:
         if kind_of(check).practice(exercise, check, values) is None:
-            why = GRADER_ONLY.get(check.kind, f"the page cannot run {check.kind} checks")
+            why = f"the page cannot run {check.kind} checks"
             out.append({"name": check.name, "kind": check.kind, "points": check.points, "why": why})
     return out
 

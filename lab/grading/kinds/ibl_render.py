@@ -6,6 +6,8 @@ view angle."""
 
 from __future__ import annotations
 
+import base64
+
 import numpy as np
 
 from lab.grading import sampling
@@ -89,6 +91,11 @@ class IBLRenderKind(SampledKind):
         return (
             passed(check, message, images=images) if ok else failed(check, message, images=images)
         )
+
+    def practice(self, exercise, check: Check, values) -> dict:
+        """The committed reference (half floats, as stored) for the page's practice mode."""
+        stored = np.ascontiguousarray(values[check.name], dtype="<f2")
+        return {"reference": base64.b64encode(stored.tobytes()).decode()}
 
     def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
         if values.shape != reference.shape:

@@ -274,7 +274,7 @@ export async function prepare(exercise) {
     for (const [key, text] of Object.entries(check.diagnosis.candidates)) {
       const data = await inflate(text, image ? Uint8Array : Float32Array);
       // A sampling check's values stay as the grader stores them (views x numbers).
-      const flat = image || check.kind === "chi_square" || check.kind === "pdf_integral";
+      const flat = image || ["chi_square", "pdf_integral", "ibl_render"].includes(check.kind);
       stored.candidates[key] = flat ? data : rows(data, check.count);
     }
     for (const [name, text] of Object.entries(check.diagnosis.terms)) {

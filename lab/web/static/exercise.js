@@ -7,7 +7,7 @@ import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { topFirst } from "./views.js";
 import { explain, prepare, rows } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
-import { SAMPLED_KINDS, runSampled } from "./sampling.js";
+import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -59,7 +59,7 @@ const LOBE_SAMPLER = `
 const bool HAS_SAMPLER = true;
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return sample_lobe(u.xy, V, N, X, Y); }
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N, X, Y); }`;
-const PENDING = "not run for this version: press “run the sampling checks” (they take a few seconds)";
+const PENDING = "not run for this version: press “run the sampling checks” (they take seconds)";
 
 /** The student's text as a model every view renders, named after the exercise. */
 export function buildSubmission(exercise, text, path, models) {
@@ -376,14 +376,16 @@ export class ExerciseMode {
     return this.results;
   }
 
-  /** Runs the sampling checks (chi-square, pdf integral) of this version of the file. */
-  runSampling() {
-    for (const result of this.results.filter((r) => r.pending)) {
+  /** Runs the sampling checks (chi-square, pdf integral, IBL render) of this version. */
+  async runSampling() {
+    const waiting = this.results.filter((r) => r.pending);
+    for (const result of waiting) await prepareSampled(result.check, this.env);
+    for (const result of waiting) {
       const panel = this.panel;
       const saved = panel.values;
       panel.values = checkValues(panel.model, result.check.params);
       try {
-        Object.assign(result, runSampled(panel, result.check, this.exercise), { pending: false });
+        Object.assign(result, await runSampled(panel, result.check, this.exercise, this.env), { pending: false });
         if (panel.lastLoop) {
           Object.assign(result, { passed: false, message: `${this.exercise.student_file}:${panel.lastLoop.line}: ` +
             "a loop did not end: the lab stopped it, so the samples are wrong; check its exit condition" });
@@ -438,7 +440,7 @@ export class ExerciseMode {
     }
     const pending = this.results.some((r) => r.pending);
     const sampling = pending ? [el("button", { type: "button", class: "run-sampling",
-      title: "run the chi-square and pdf integral checks on this version (a few seconds)",
+      title: "run the chi-square, pdf integral and IBL render checks on this version (seconds)",
       onclick: (e) => {
         e.target.disabled = true;
         e.target.textContent = "running…";

@@ -42,6 +42,19 @@ export function formatG(x) {
   return text;
 }
 
+/** Python's format(x, f".{digits}g"). */
+export function formatDigits(x, digits) {
+  if (!Number.isFinite(x)) return Number.isNaN(x) ? "nan" : x > 0 ? "inf" : "-inf";
+  if (x === 0) return "0";
+  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
+  const strip = (t) => (t.includes(".") ? t.replace(/0+$/, "").replace(/\.$/, "") : t);
+  if (exponent < -4 || exponent >= digits) {
+    const [mantissa, exp] = x.toExponential(digits - 1).split("e");
+    return `${strip(mantissa)}e${exp[0] === "-" ? "-" : "+"}${exp.replace(/^[+-]/, "").padStart(2, "0")}`;
+  }
+  return strip(x.toFixed(Math.max(0, digits - 1 - exponent)));
+}
+
 /** Python's repr() of a string (quotes chosen the way Python chooses them). */
 export function pyRepr(text) {
   const quote = text.includes("'") && !text.includes('"') ? '"' : "'";

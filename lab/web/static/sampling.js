@@ -4,10 +4,15 @@
 // same view template (shaders/views/ibl_sample.glsl) with the same random numbers (the
 // PCG of terms/sampling.glsl, seeded by texel and seed), in the same turned frames
 // (exercises.json carries them from the grader's code); the pdf is integrated per bin by
-// the same adaptive quadrature over ibl_pdf.glsl. The IBL render check stays the grader's.
+// the same adaptive quadrature over ibl_pdf.glsl. The IBL render check draws the sphere
+// under the environment with the student's sampler alone (views/ibl.glsl, the grader's
+// seeds) and judges it against the committed reference as sampling.judge_render does.
 import { sentence } from "./diagnosis.js";
+import { formatDigits as gFormat } from "./header.js";
+import { loadEnvironment } from "./iblsource.js";
+import { iblRender } from "./samplerender.js";
 
-export const SAMPLED_KINDS = ["chi_square", "pdf_integral"];
+export const SAMPLED_KINDS = ["chi_square", "pdf_integral", "ibl_render"];
 
 const THETA_BINS = 20;
 const PHI_BINS = 40;
@@ -21,19 +26,6 @@ const WIDTH = 1024; // texels per row of a pass, as the grader's _texel_pass
 const CHUNK_ROWS = 256; // rows of one pdf pass (one render target size for all of them)
 const TAU = 2 * Math.PI;
 const mod = (a, n) => ((a % n) + n) % n; // Python's %
-
-/** Python's format(x, ".Ng"). */
-function gFormat(x, digits) {
-  if (!Number.isFinite(x)) return Number.isNaN(x) ? "nan" : x > 0 ? "inf" : "-inf";
-  if (x === 0) return "0";
-  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
-  const strip = (t) => (t.includes(".") ? t.replace(/0+$/, "").replace(/\.$/, "") : t);
-  if (exponent < -4 || exponent >= digits) {
-    const [mantissa, exp] = x.toExponential(digits - 1).split("e");
-    return `${strip(mantissa)}e${exp[0] === "-" ? "-" : "+"}${exp.replace(/^[+-]/, "").padStart(2, "0")}`;
-  }
-  return strip(x.toFixed(Math.max(0, digits - 1 - exponent)));
-}
 
 function texture(gl, width, height, data) {
   const t = gl.createTexture();
@@ -391,7 +383,14 @@ function pdfIntegral(panel, check, exercise) {
     `samples whose half vector faces away from V); allowed ±${gFormat(tolerance, 6)}${tail}` };
 }
 
-/** Runs a sampling check on the panel (its values already the check's). */
-export function runSampled(panel, check, exercise) {
+/** Loads what a check needs from the server (the environment), before it runs. */
+export async function prepareSampled(check, env) {
+  if (check.kind === "ibl_render") await loadEnvironment(check.options.environment, env.lab.environments, env.C.LUMA);
+}
+
+/** Runs a sampling check on the panel (its values already the check's); `env` is the
+ * exercise mode's (lab, C). */
+export async function runSampled(panel, check, exercise, env) {
+  if (check.kind === "ibl_render") return iblRender(panel, check, exercise, env);
   return check.kind === "chi_square" ? chiSquare(panel, check, exercise) : pdfIntegral(panel, check, exercise);
 }
