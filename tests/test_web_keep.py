@@ -203,3 +203,19 @@ def test_a_file_replacing_a_library_model_says_so_and_forget_brings_it_back(page
     assert any("unknown model tint" in n for n in page.evaluate("brdfLab.notes()"))
     assert not page.locator("#forget-files").is_visible()
     assert page.errors == []
+
+
+def test_slides_show_the_library_whatever_this_browser_keeps(page):
+    """An embedded lab (a slide's demo) ignores the kept edits and files: a presenter's
+    experiment in the lab does not change the lecture's demos."""
+    reload(page, f"model=phong&size={SIZE}&light=30,0")
+    original = sphere(page, 0)
+    assert edit(page, 0, PHONG.replace("ks * pow(RoV, ke)", "0.25 * ks * pow(RoV, ke)")) == []
+    reload(page, f"model=phong&size={SIZE}&light=30,0&embed=1")
+    np.testing.assert_array_equal(sphere(page, 0), original)
+    assert page.evaluate("brdfLab.notes()") == []
+    reload(page, f"model=phong&size={SIZE}&light=30,0")  # the lab itself keeps the edit
+    assert np.abs(sphere(page, 0) - original).max() > 0.01
+    page.evaluate("brdfLab.edit(0)")
+    page.locator("#editor button", has_text="reset").click()
+    assert page.errors == []

@@ -902,7 +902,14 @@ const originalText = (name) => originals[name] ?? lab.files[`brdfs/${name}.glsl`
 /** The editor's text of a model (or exercise), kept in this browser until it is the
  * original again (store.js). */
 function keepText(panel, text) {
-  keepDraft(panel.name, text === originalText(panel.name) ? null : text);
+  if (!embedded()) keepDraft(panel.name, text === originalText(panel.name) ? null : text);
+}
+
+/** Embedded in a slide, the page shows the library as it is: the student's (or the
+ * presenter's) kept files and edits of this browser stay out of the lecture's demos. */
+function embedded() {
+  const value = new URLSearchParams(location.hash.slice(1)).get("embed");
+  return value !== null && value !== "0";
 }
 
 /** The model of an edited text, as the editor builds it: an opened file's own rules, a
@@ -1690,13 +1697,13 @@ function renderNow() {
 
 async function main() {
   await load();
-  await restoreFiles();
+  if (!embedded()) await restoreFiles();
   const panels = readHash();
   buildPage();
   showToolbar();
   if (!panels.length) panels.push({ name: defaultModel(), values: {} });
   addPanels(panels);
-  restoreDrafts();
+  if (!embedded()) restoreDrafts();
   if (storeProblem) lab.notes.push(storeProblem);
   showNotes();
   buildLights();
