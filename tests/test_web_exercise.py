@@ -7,6 +7,7 @@ import json
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from lab.web.browser import chromium_path
@@ -224,6 +225,18 @@ def test_sampling_checks_wait_for_the_button_and_name_compile_errors(page, tmp_p
     page.locator("#exercise button.run-sampling").click()
     page.wait_for_function("document.querySelectorAll('#exercise li.pending').length === 0")
     assert page.locator("#exercise li.pass").count() == 4
+    # The grader's pictures: a correct sampler's histogram looks like its pdf's.
+    figures = page.locator('#exercise .exercise-images[data-check="chi_square.glossy"] canvas')
+    assert figures.count() == 3
+    pixels = figures.evaluate_all(
+        "cs => cs.map(c => Array.from(c.getContext('2d')"
+        ".getImageData(0, 0, c.width, c.height).data))"
+    )
+    pdf, samples, theirs = (np.array(p, float).reshape(-1, 4)[:, :3] for p in pixels)
+    assert pdf.max() > 200 and np.abs(pdf - samples).mean() < 8
+    np.testing.assert_allclose(pdf, theirs, atol=2)  # the solution's pdf: the same
+    renders = page.locator('#exercise .exercise-images[data-check="ibl_render.grey_room"] canvas')
+    assert renders.count() == 4
     # A mistake the compiler finds: the grader's file and line, on every check.
     lines = solution.splitlines()
     line = next(i for i, t in enumerate(lines, 1) if "float pdf_lobe" in t)

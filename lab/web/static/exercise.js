@@ -427,6 +427,24 @@ export class ExerciseMode {
         canvas(signedDifferenceImage(r.signed, r.covered, size, r.check.threshold),
           `yours − reference (red: too bright, blue: too dark; ±${formatG(r.check.threshold)}/255 allowed)`)));
     }
+    // A sampling check's pictures, as the grader's report shows them: histograms over
+    // (cos θ, φ) of a chi-square test, the renders of the IBL check (tone mapped).
+    for (const r of this.results) {
+      const figures = [...(r.figures || []), ...(r.renders || []).map(({ title, size, rgb }) => {
+        const rgba = new Uint8ClampedArray(4 * size * size);
+        for (let i = 0; i < size * size; i++) {
+          for (let c = 0; c < 3; c++) rgba[4 * i + c] = Math.floor(Math.min(Math.max(tonemap(rgb[3 * i + c]), 0), 1) * 255 + 0.5);
+          rgba[4 * i + 3] = 255;
+        }
+        return { title, width: size, height: size, rgba };
+      })];
+      if (!figures.length) continue;
+      pictures.push(el("div", { class: "exercise-images", "data-check": r.check.name }, ...figures.map((f) => {
+        const c = el("canvas", { width: f.width, height: f.height, title: f.title });
+        c.getContext("2d").putImageData(new ImageData(f.rgba, f.width, f.height), 0, 0);
+        return el("figure", {}, c, el("figcaption", {}, `${r.check.name}: ${f.title}`));
+      })));
+    }
     // The checks only the grader runs, named with their points and why.
     const others = exercise.grader_only || [];
     const otherPoints = others.reduce((s, c) => s + c.points, 0);

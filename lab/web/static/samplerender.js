@@ -155,5 +155,8 @@ export async function iblRender(panel, check, exercise, env) {
     }
     if (likely) message += `. ${likely}`;
   }
-  return { passed, message };
+  const size = check.size;
+  const renders = [["the solution's estimator, converged", converged], ["the solution's sampler at the same samples", atSamples],
+    ["your sampler at the same samples", raw[0]], ["your estimator run longer: what it converges to", raw[1]]];
+  return { passed, message, renders: renders.map(([title, rgb]) => ({ title, size, rgb })) };
 }

@@ -264,6 +264,47 @@ function binWords(index) {
 const where = ([theta, phi]) => `view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}°`;
 
 const ROW = 2 * BINS + 3; // per view: observed, expected, then failed, not unit, not finite
+const SCALE = 6; // pixels per bin side of a histogram picture
+
+/** A (cos θ, φ) histogram as an RGBA picture, θ down, φ across (sampling.histogram_image). */
+function histogramImage(counts, peak) {
+  const [width, height] = [PHI_BINS * SCALE, THETA_BINS * SCALE];
+  const rgba = new Uint8ClampedArray(4 * width * height);
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const bin = (THETA_BINS - 1 - Math.floor(y / SCALE)) * PHI_BINS + Math.floor(x / SCALE);
+      const v = Math.sqrt(Math.min(Math.max(counts[bin] / Math.max(peak, 1e-9), 0), 1));
+      const at = 4 * (y * width + x);
+      [v, v ** 0.7, v ** 0.4].forEach((c, k) => (rgba[at + k] = Math.floor(c * 255 + 0.5)));
+      rgba[at + 3] = 255;
+    }
+  }
+  return { width, height, rgba };
+}
+
+/** The grader's three pictures of a chi-square check, at its worst view (or the first). */
+function histogramFigures(check, raw, view) {
+  const start = ROW * view;
+  const mine = raw.subarray(start, start + BINS);
+  const pdf = raw.subarray(start + BINS, start + 2 * BINS);
+  const peak = Math.max(...pdf, ...mine, 1);
+  const figures = [
+    { title: "your pdf × samples over (cos θ, φ): θ down from the normal, φ across", ...histogramImage(pdf, peak) },
+    { title: "your samples, counted in the same bins", ...histogramImage(mine, peak) },
+  ];
+  const solution = solutionValues(check);
+  if (solution.length === raw.length) {
+    figures.push({ title: "the solution's pdf, for comparison",
+      ...histogramImage(solution.subarray(start + BINS, start + 2 * BINS), peak) });
+  }
+  return figures;
+}
+
+/** The solution's numbers of a chi-square check (exercises.json, float32). */
+function solutionValues(check) {
+  check.solutionValues ??= new Float32Array(Uint8Array.from(atob(check.solution), (c) => c.charCodeAt(0)).buffer);
+  return check.solutionValues;
+}
 
 /** Two samplers alike (sampling.same_chi_square): rows of ROW numbers per view. */
 function sameChiSquare(a, b, samples) {
@@ -293,8 +334,7 @@ function explainChiSquare(check, exercise, raw) {
   for (const [key, values] of Object.entries(check.stored?.candidates || {})) {
     if (key in hints && sameChiSquare(raw, values, samples)) return sentence(hints[key]);
   }
-  check.solutionValues ??= new Float32Array(Uint8Array.from(atob(check.solution), (c) => c.charCodeAt(0)).buffer);
-  const expected = check.solutionValues;
+  const expected = solutionValues(check);
   if (expected.length !== raw.length) return "";
   let pdfOff = false;
   const mineOnly = Float64Array.from(raw);
@@ -317,6 +357,7 @@ function chiSquare(panel, check, exercise) {
   const samples = check.options.samples;
   const level = 1 - (1 - check.options.alpha) ** (1 / Math.max(check.views.length, 1)); // Šidák
   const lines = [];
+  let worstView = -1; // the first view that fails: its histograms are shown
   const raw = new Float64Array(ROW * check.views.length);
   check.views.forEach((view, index) => {
     const { observed, failed, notUnit, notFinite } = sampleCounts(panel, check, index);
@@ -325,12 +366,16 @@ function chiSquare(panel, check, exercise) {
     raw.set(observed, ROW * index);
     raw.set(expected, ROW * index + BINS);
     raw.set([failed, notUnit, notFinite], ROW * index + 2 * BINS);
-    if (notFinite) lines.push(`${where(view)}: ${notFinite} of ${samples} samples are NaN or infinite`);
+    const fail = (text) => {
+      lines.push(text);
+      if (worstView < 0) worstView = index;
+    };
+    if (notFinite) fail(`${where(view)}: ${notFinite} of ${samples} samples are NaN or infinite`);
     else if (notUnit > 0.001 * samples) {
-      lines.push(`${where(view)}: ${notUnit} of ${samples} sampled directions are not unit vectors (a direction ` +
+      fail(`${where(view)}: ${notUnit} of ${samples} sampled directions are not unit vectors (a direction ` +
         "built from sin and cos has length 1)");
     } else if (mass < 0.5 * samples) {
-      lines.push(`${where(view)}: your pdf integrates to ${(mass / samples).toFixed(3)} over the sphere, so it ` +
+      fail(`${where(view)}: your pdf integrates to ${(mass / samples).toFixed(3)} over the sphere, so it ` +
         "cannot describe your samples (see the pdf_integral check)");
     } else {
       const { statistic, dof, p } = pearson(observed, expected, failed, samples - mass);
@@ -341,7 +386,7 @@ function chiSquare(panel, check, exercise) {
         const score = (observed[i] - expected[i]) ** 2 / Math.max(expected[i], 1);
         if (score > worst) [worst, off] = [score, i];
       }
-      lines.push(`${where(view)}: the samples do not follow your pdf (χ² = ${statistic.toFixed(0)} for ${dof} ` +
+      fail(`${where(view)}: the samples do not follow your pdf (χ² = ${statistic.toFixed(0)} for ${dof} ` +
         `degrees of freedom, p = ${gFormat(p, 2)} < ${gFormat(level, 2)}); most off: ${binWords(off)} holds ` +
         `${observed[off]} samples where the pdf expects ${expected[off].toFixed(0)}`);
     }
@@ -350,10 +395,12 @@ function chiSquare(panel, check, exercise) {
     const more = lines.length - 1;
     const message = lines[0] + (more ? ` (and ${more} more view${more > 1 ? "s" : ""} fail)` : "");
     const likely = explainChiSquare(check, exercise, raw);
-    return { passed: false, message: likely ? `${message}. ${likely}` : message };
+    return { passed: false, message: likely ? `${message}. ${likely}` : message,
+      figures: histogramFigures(check, raw, worstView) };
   }
   const tested = check.views.map(([t]) => `${t.toFixed(0)}°`).join(", ");
-  return { passed: true, message: `samples follow the pdf at every view (θ = ${tested}; p ≥ ${gFormat(level, 2)})` };
+  return { passed: true, message: `samples follow the pdf at every view (θ = ${tested}; p ≥ ${gFormat(level, 2)})`,
+    figures: histogramFigures(check, raw, 0) };
 }
 
 /** The pdf integral check (sampling.pdf_integral_raw and judge_pdf_integral). */
