@@ -42,7 +42,12 @@ vec3 srgb(vec3 c) {
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
 }
 void main() {
-    vec4 v = texelFetch(u_image, ivec2(gl_FragCoord.xy) / u_step, 0);
+    // A shift, not a division (SwiftShader divides integers lane by lane).
+    vec4 v = texelFetch(u_image, ivec2(gl_FragCoord.xy) >> (u_step == 2 ? 1 : 0), 0);
+    if (v.a == 0.0) {  // off the sphere: nothing to convert (the output is 0 either way)
+        frag_color = vec4(0.0);
+        return;
+    }
     frag_color = vec4(srgb(v.rgb * u_scale) * v.a, v.a);
 }
 `;
