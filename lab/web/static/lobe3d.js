@@ -366,7 +366,7 @@ export class LobeView {
     else {
       const scratch = new OffscreenCanvas(...this.size);
       scratch.getContext("2d").putImageData(image, 0, 0);
-      ctx.imageSmoothingEnabled = false;
+      ctx.imageSmoothingEnabled = true; // a smooth draft, not blocks
       ctx.drawImage(scratch, 0, 0, width, height);
     }
     const camera = { yaw: lab.lobeYaw, pitch: lab.lobePitch, zoom: lab.lobeZoom };
