@@ -15,7 +15,7 @@ import numpy as np
 
 from lab.glsl import ShaderCompileError
 from lab.grading import diagnosis, mistakes
-from lab.grading.checks import Grader, expected_value, render
+from lab.grading.checks import Grader, expected_value, hidden_variant, render
 from lab.grading.exercise import Check, Exercise, ExerciseError, SubmissionError, build_model
 from lab.grading.kinds import kind_of
 from lab.models import Model, ModelError
@@ -37,8 +37,10 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
     values: dict[str, np.ndarray] = {}
     hints: dict[str, str] = {}
     kept: list[dict[str, np.ndarray]] = []
+    hidden_only: list[list[np.ndarray]] = []
     by_name = {c.name: c for c in exercise.checks}
-    for variant in mistakes.variants(exercise, solution):
+    variants = mistakes.variants(exercise, solution)
+    for variant in variants:
         model = _variant_model(exercise, variant, solution)
         if model is None:
             if variant.key.startswith("mistake."):
@@ -58,11 +60,18 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
             and all(not differs(by_name[n], mine[n], other[n]) for n in mine)
             for other in kept
         )
-        if not mine or (duplicate and variant.key.startswith("mutant.")):
+        if not mine:  # the same as the solution at every committed setting
+            seen = _hidden_values(exercise, grader, model)
+            if seen and not any(_same_values(seen, other) for other in hidden_only):
+                hidden_only.append(seen)  # it shows under hidden mode's random settings
+                hints[variant.key] = variant.hint
+            continue
+        if duplicate and variant.key.startswith("mutant."):
             continue
         kept.append(mine)
         hints[variant.key] = variant.hint
         values.update({f"{name}|{variant.key}": v for name, v in mine.items()})
+    values.update(_fingerprints(exercise, grader, [v for v in variants if v.key in hints]))
     terms = mistakes.declared_terms(exercise)
     model = grader.solution_model(exercise)
     for check in exercise.checks:
@@ -76,6 +85,58 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
     folder = exercise.references
     np.savez_compressed(folder / mistakes.VALUES, **values)
     return [folder / mistakes.VALUES, mistakes.write_hints(exercise, hints, terms)]
+
+
+FINGERPRINT = "fingerprint"  # stored as fingerprint|<variant key> and fingerprint|solution
+
+
+def _fingerprints(exercise: Exercise, grader: Grader, variants: list) -> dict[str, np.ndarray]:
+    """For a kind whose live values describe the program (a sampler's fingerprint): each
+    kept variant's and the solution's at the first such check's committed settings, which
+    hidden mode compares the student's with to pick the plausible variants."""
+    fixed = next((c for c in exercise.checks if kind_of(c).by_program), None)
+    if fixed is None:
+        return {}
+    kind, solution = kind_of(fixed), exercise.solution.read_text(encoding="utf-8")
+    out = {
+        f"{FINGERPRINT}|solution": kind.live_values(
+            grader.renderer, grader.solution_model(exercise), fixed
+        )
+    }
+    for variant in variants:
+        model = _variant_model(exercise, variant, solution)
+        if model is not None:
+            out[f"{FINGERPRINT}|{variant.key}"] = kind.live_values(grader.renderer, model, fixed)
+    return out
+
+
+HIDDEN_DRAWS = (1, 2, 3)  # seeds of hidden mode tried on a variant the committed checks miss
+
+
+def _hidden_values(exercise: Exercise, grader: Grader, model: Model) -> list[np.ndarray]:
+    """A variant's live values at a few of hidden mode's draws ([] when it fails no check
+    there: then it is no mistake hidden mode could name, perhaps an equivalent program)."""
+    solution, values, fails = grader.solution_model(exercise), [], False
+    for seed in HIDDEN_DRAWS:
+        for index, check in enumerate(exercise.checks):
+            drawn = hidden_variant(check, solution, seed, index)
+            kind = kind_of(drawn)
+            try:
+                mine = expected_value(render(grader.renderer, model, drawn), drawn)
+                live = kind.live_values(grader.renderer, model, drawn) if kind.by_program else mine
+            except (ShaderCompileError, ModelError):
+                return []
+            want = expected_value(render(grader.renderer, solution, drawn), drawn)
+            fails = fails or kind.differs(drawn, mine, want)
+            values.append(live)
+    return values if fails else []
+
+
+def _same_values(a: list[np.ndarray], b: list[np.ndarray]) -> bool:
+    return all(
+        x.shape == y.shape and np.allclose(x, y, rtol=1e-3, atol=1e-4, equal_nan=True)
+        for x, y in zip(a, b, strict=True)
+    )
 
 
 def _finest(wrong: list[str], right: list[str], parent: dict[str, str]):
@@ -95,7 +156,7 @@ def _finest(wrong: list[str], right: list[str], parent: dict[str, str]):
 
 def _variant_model(exercise: Exercise, variant: mistakes.Variant, solution: str) -> Model | None:
     try:
-        return build_model(exercise, exercise.solution, variant.apply(solution))
+        return build_model(exercise, exercise.solution, variant.apply(solution), trusted=True)
     except (SubmissionError, ExerciseError, ModelError):
         return None
 
@@ -110,6 +171,7 @@ class Explainer:
         self._models: dict[tuple[Path, str], Model | None] = {}
         self._variants: dict[Path, list[mistakes.Variant]] = {}
         self._solution_code: dict[Path, str] = {}
+        self._matched: dict[tuple[Path, str], str | None] = {}
 
     def variants(self, exercise: Exercise) -> list[mistakes.Variant]:
         """Known mistakes and single-edit mutants of the solution (hidden mode renders
@@ -131,48 +193,84 @@ class Explainer:
                 self._stored[folder] = {}
         return self._stored[folder]
 
-    def candidates(
-        self, exercise: Exercise, check: Check, live: bool, model: Model | None = None
-    ) -> dict[str, np.ndarray]:
-        """The variants' values for this check: stored, or (hidden mode) rendered now.
+    def candidates(self, exercise: Exercise, check: Check) -> dict[str, np.ndarray]:
+        """The stored values of the variants the references kept, for this check."""
+        prefix = f"{check.name}|"
+        return {
+            k[len(prefix) :]: v
+            for k, v in self.stored(exercise).items()
+            if k.startswith(prefix) and not k.startswith(prefix + "term.")
+        }
 
-        Hidden mode renders live only the variant (known mistake or generated mutant) that
-        the student's program matches at the check's committed settings, where the stored
-        values are: one compile, not one per variant, within grade-bench's budget."""
-        if not live:
-            prefix = f"{check.name}|"
-            return {
-                k[len(prefix) :]: v
-                for k, v in self.stored(exercise).items()
-                if k.startswith(prefix) and not k.startswith(prefix + "term.")
-            }
-        original = next((c for c in exercise.checks if c.name == check.name), None)
-        kept = mistakes.read_hints(exercise)  # the variants the references kept
-        stored = self.candidates(exercise, original, False) if original else {}
-        stored = {k: v for k, v in stored.items() if k in kept}
-        if not stored or model is None:
-            return {}
-        kind = kind_of(original)
-        try:
-            mine = kind.stored(render(self.grader.renderer, model, original), original)
-            want = self.grader.expected(exercise, original, live=False)
-        except (ShaderCompileError, ModelError, OSError, KeyError):
-            return {}
-        key = kind.nearest(original, mine, want, stored)
-        variant = next((v for v in self.variants(exercise) if v.key == key), None)
-        if variant is None:
-            return {}
+    def variant_model(self, exercise: Exercise, variant: mistakes.Variant) -> Model | None:
+        """A variant built once per worker (None: it does not build)."""
         cached = (exercise.solution, variant.key)
         if cached not in self._models:
+            self.variants(exercise)
             solution = self._solution_code[exercise.solution]
             self._models[cached] = _variant_model(exercise, variant, solution)
-        if self._models[cached] is None:
-            return {}
+        return self._models[cached]
+
+    def live(self, exercise: Exercise, check: Check, model: Model, got, expected) -> str | None:
+        """Hidden mode: the variants the references kept that are plausible (see
+        `plausible`) rendered now at the check's random settings; the key of the one the
+        student's values match, or None.
+
+        A kind whose live values describe the program (a sampler's fingerprint) is
+        matched once per submission, at the first failed check's settings."""
+        kind = kind_of(check)
+        if kind.by_program:
+            memo = (exercise.solution, model.code)
+            if memo not in self._matched:
+                self._matched[memo] = self._live_match(exercise, check, model, None, None)
+            return self._matched[memo]
+        return self._live_match(exercise, check, model, got, expected)
+
+    def plausible(self, exercise: Exercise, check: Check, model: Model) -> list[str]:
+        """The kept variants worth rendering live for a check: at its committed settings
+        (stored values) those the student's program matches, and where the student's
+        program is right there, those that are right there too: they may show only under
+        random settings. A few compiles, not one per variant."""
+        kind, renderer, stored = kind_of(check), self.grader.renderer, self.stored(exercise)
+        if kind.by_program:  # the fingerprint at the first such check's settings
+            fixed = next(c for c in exercise.checks if kind_of(c).by_program)
+            prefix, want = f"{FINGERPRINT}|", stored.get(f"{FINGERPRINT}|solution")
+        else:
+            fixed = next((c for c in exercise.checks if c.name == check.name), None)
+            prefix = f"{check.name}|"
+            want = self.grader.expected(exercise, fixed, live=False) if fixed else None
+        kept = [v.key for v in self.variants(exercise) if v.key in mistakes.read_hints(exercise)]
+        if want is None:
+            return kept  # references without them: every variant is plausible
+        mine = kind.live_values(renderer, model, fixed)
+        right = kind.live_same(fixed, mine, want)
+        out = []
+        for key in kept:
+            theirs = stored.get(prefix + key)
+            if theirs is None or kind.live_same(fixed, theirs, want):
+                if right:
+                    out.append(key)
+            elif not right and kind.live_match(fixed, mine, want, {key: theirs}) == key:
+                out.append(key)
+        return out
+
+    def _live_match(self, exercise, check, model, got, expected) -> str | None:
+        kind, renderer = kind_of(check), self.grader.renderer
         try:
-            raw = render(self.grader.renderer, self._models[cached], check)
-        except (ShaderCompileError, ModelError):
-            return {}
-        return {variant.key: expected_value(raw, check)}
+            plausible = self.plausible(exercise, check, model)
+            if not plausible:
+                return None
+            if got is None:
+                got = kind.live_values(renderer, model, check)
+                expected = kind.live_values(renderer, self.grader.solution_model(exercise), check)
+            values = {}
+            for variant in self.variants(exercise):
+                wrong = self.variant_model(exercise, variant) if variant.key in plausible else None
+                if wrong is not None:
+                    values[variant.key] = kind.live_values(renderer, wrong, check)
+        except (ShaderCompileError, ModelError, OSError, KeyError):
+            return None
+        return kind.live_match(check, got, expected, values)
 
     def explain(
         self,
@@ -187,13 +285,12 @@ class Explainer:
         hints = mistakes.read_hints(exercise)
         kind = kind_of(check)
         got = kind.stored(raw, check)  # the form of the reference and the variants' values
-        candidates = {
-            k: v
-            for k, v in self.candidates(exercise, check, live, model).items()
-            if k in hints and (not live or kind.differs(check, v, expected))
-        }
-        key = kind.nearest(check, got, expected, candidates)
-        if key:
+        if live:
+            key = self.live(exercise, check, model, got, expected)
+        else:
+            candidates = {k: v for k, v in self.candidates(exercise, check).items() if k in hints}
+            key = kind.nearest(check, got, expected, candidates)
+        if key in hints:
             return diagnosis.sentence(hints[key])
         return diagnosis.sentence(kind.explain(self, exercise, check, model, expected, got, live))
 

@@ -48,6 +48,27 @@ def ibl_renderer(renderer) -> IBLRenderer:
     return cached
 
 
+# -- a program's fingerprint: what hidden mode's diagnosis compares ---------------------------
+FINGERPRINT_ROWS = 256
+
+
+def fingerprint(renderer, model, params, seed: int) -> np.ndarray:
+    """(256, 5) rows: a sample (L and its pdf) for a view V, and the pdf at a pair (L, V),
+    at random inputs fixed by `seed`. Samplers with the same rows sample and weigh alike
+    (the BRDF is the library's): two texel passes, where a check's own values take a full
+    chi-square test or render."""
+    rng = np.random.default_rng([seed, 1])
+    n = FINGERPRINT_ROWS
+    theta = np.degrees(np.arccos(rng.uniform(0.05, 1.0, (2, n))))
+    phi = rng.uniform(0.0, 360.0, (2, n))
+    L = chisquare.view_direction(theta[0], phi[0]).T
+    V = chisquare.view_direction(theta[1], phi[1]).T
+    ibl = ibl_renderer(renderer)
+    sampled = ibl.brdf_samples(model, params, V, seed)
+    pdf = ibl.brdf_pdf(model, params, L, V)
+    return np.concatenate([sampled, pdf[:, None]], axis=1)
+
+
 # -- chi-square -------------------------------------------------------------------------------
 def chi_square_raw(renderer, model, params, views, samples: int, seed: int) -> np.ndarray:
     """(views, 2 * BINS + EXTRA): observed counts, expected counts, failure counts."""

@@ -159,6 +159,25 @@ class CheckKind:
         values match, or None."""
         return None
 
+    # -- hidden mode: likely wrong programs rendered now, at the check's random settings ----
+    by_program = False  # live values describe the program, not this check (one match each)
+
+    def live_values(self, renderer: Renderer, model: Model, check: Check) -> np.ndarray:
+        """What hidden mode compares of a likely wrong program and the student's, rendered
+        at the check's settings: by default the check's own values (stored form)."""
+        return self.stored(self.render(renderer, model, check), check)
+
+    def live_same(self, check: Check, values: np.ndarray, other: np.ndarray) -> bool:
+        """Do two programs' live values agree (as far as this check can tell)?"""
+        return not self.differs(check, values, other)
+
+    def live_match(
+        self, check: Check, mine: np.ndarray, solution: np.ndarray, candidates: dict
+    ) -> str | None:
+        """The candidate whose live values the student's match (of those that fail)."""
+        failing = {k: v for k, v in candidates.items() if self.differs(check, v, solution)}
+        return self.nearest(check, mine, solution, failing)
+
     def explain(
         self, explainer, exercise, check: Check, model: Model, expected, got, live: bool
     ) -> str:
