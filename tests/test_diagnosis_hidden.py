@@ -87,3 +87,20 @@ def test_a_mistake_no_committed_check_shows_is_kept_and_named_in_hidden_mode(tmp
     assert failed, "hidden mode's draw shows no coloured f0"
     named = [r for r in failed if r.diagnosis == diagnosis.sentence(f0_hint(exercise))]
     assert named, [r.message for r in failed]
+
+
+def test_a_sampler_mistake_is_named_in_hidden_mode_by_its_fingerprint(tmp_path):
+    """10's checks are matched by the sampler's fingerprint (samples and pdf at fixed
+    inputs) at the drawn settings: the half circle of φ gets its stored hint on every
+    failed check; the solution itself, in hidden mode, passes with no diagnosis."""
+    exercise = next(
+        e for e in find_exercises(ROOT / "exercises") if e.name == "10_importance_sampling"
+    )
+    solution = exercise.solution.read_text(encoding="utf-8")
+    hidden = graded(exercise, solution.replace("2.0 * PI * u.y", "u.y * PI"), tmp_path, 3)
+    failed = [r for r in hidden.checks() if not r.passed]
+    assert failed and all("whole circle" in r.diagnosis for r in failed), [
+        r.message for r in failed
+    ]
+    right = graded(exercise, solution, tmp_path / "right", 3)
+    assert right.passed and not [r.diagnosis for r in right.checks() if r.diagnosis]
