@@ -41,6 +41,8 @@ CORPUS = [
         "below the surface",
     ),
     ("02_phong", "extra 1/pi on ks", [("ks * pow(RoV, ke)", "ks * pow(RoV, ke) / PI")], "1/π"),
+    ("02_phong", "exponent scaled", [("pow(RoV, ke)", "pow(RoV, 0.2 * ke)")], "exponent of about"),
+    ("03_blinn_phong", "exponent scaled", [("pow(NoH, ke)", "pow(NoH, 4.0 * ke)")], "about 160"),
     ("03_blinn_phong", "H not normalised", [("normalize(L + V)", "L + V")], "not normalised"),
     ("03_blinn_phong", "no 1/pi", [("kd * INV_PI", "kd")], "1/π"),
     ("03_blinn_phong", "V.H", [("dot(N, H)", "dot(H, V)")], "V·H"),

@@ -110,3 +110,63 @@ def test_header_default_and_range_edits_are_named(tmp_path):
     assert "phong.glsl:" in text and line in text
     plain = grade(tmp_path, "02_phong", [])
     assert not [w for r in plain.checks() for w in r.warnings if "header" in w]
+
+
+@pytest.mark.parametrize(
+    ("model", "true", "wrong"),
+    [("phong", 50.0, 10.0), ("blinn_phong", 50.0, 12.0), ("phong", 50.0, 200.0)],
+)
+def test_lobe_width_names_the_fitted_exponent(model, true, wrong):
+    """A lobe of the wrong width names the exponent whose lobe (lab.reference) is as wide:
+    Blinn-Phong's too, whose width in θo is not Phong's for the same exponent."""
+    import numpy as np
+
+    from lab import reference
+    from lab.constants import LUMA
+    from lab.grading import diagnosis
+    from lab.grading.spec import Check
+
+    theta = np.arange(-88.0, 88.5, 1.0)
+    rows = np.stack(
+        [np.full_like(theta, 30.0), np.zeros_like(theta), np.abs(theta), (theta >= 0) * 180.0],
+        axis=1,
+    )
+    check = Check(name="polar.x", kind="polar", points=1, theta_i=30.0, params={"ke": true})
+    lobe = {
+        k: reference.brdf_angles(model, {"ke": k}, rows) @ np.array(LUMA) for k in (true, wrong)
+    }
+    text = diagnosis.lobe(check, theta, lobe[true], lobe[wrong], check.params, model)
+    fitted = float(text.split("exponent of about ")[1].split()[0])
+    assert abs(fitted / wrong - 1.0) < 0.1, text
+    assert f"instead of {true:g}" in text and ("wide" in text)
+
+
+def test_a_rougher_lobe_is_named_by_its_roughness_not_its_peak():
+    """Cook-Torrance's off-specular peak moves with the roughness: a rougher lobe peaking
+    later is named by the fitted m, not as a wrong reflected direction; a lobe that only
+    rises toward grazing (f_r's 1/N·V) gets no width at all."""
+    import numpy as np
+
+    from lab import reference
+    from lab.constants import LUMA
+    from lab.grading import diagnosis
+    from lab.grading.spec import Check
+
+    theta = np.arange(-88.0, 88.5, 1.0)
+
+    def lobe(theta_i: float, m: float) -> np.ndarray:
+        rows = np.stack(
+            [np.full_like(theta, theta_i), 0 * theta, np.abs(theta), (theta >= 0) * 180.0], 1
+        )
+        return reference.brdf_angles("cook_torrance", {"m": m}, rows) @ np.array(LUMA)
+
+    check = Check(name="polar.x", kind="polar", points=1, theta_i=30.0, params={"m": 0.2})
+    text = diagnosis.lobe(
+        check, theta, lobe(30.0, 0.2), lobe(30.0, 0.3), {"m": 0.2}, "cook_torrance"
+    )
+    assert "roughness m of about 0.29 instead of 0.2" in text, text
+    assert "reflected direction" not in text
+    grazing = Check(name="polar.y", kind="polar", points=1, theta_i=60.0, params={"m": 0.3})
+    assert not diagnosis.lobe(
+        grazing, theta, lobe(60.0, 0.3), lobe(60.0, 0.15), {}, "cook_torrance"
+    )

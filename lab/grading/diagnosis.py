@@ -188,8 +188,11 @@ def _grazing(angles: np.ndarray, wrong: np.ndarray, zero: np.ndarray) -> str:
     return ""
 
 
-def lobe(check: Check, theta: np.ndarray, expected: list, got: list, params: dict) -> str:
-    """For a polar curve: the peak in the wrong place, or a lobe too wide or too narrow."""
+def lobe(
+    check: Check, theta: np.ndarray, expected: list, got: list, params: dict, model: str = ""
+) -> str:
+    """For a polar curve: the peak in the wrong place, or a lobe too wide or too narrow
+    (with the exponent or roughness whose lobe is as wide, fitted with lab.reference)."""
     theta = np.asarray(theta)
     e, g = np.asarray(expected, dtype=float), np.asarray(got, dtype=float)
     side = theta >= 0.0  # the reflection side of the plane of incidence
@@ -201,23 +204,78 @@ def lobe(check: Check, theta: np.ndarray, expected: list, got: list, params: dic
     peaked = g.max() > 1.5 * min(g[0], g[-1]) + check.atol and e.max() > 1.5 * min(e[0], e[-1])
     if not peaked:
         return ""
-    if abs(e_peak - g_peak) >= 3.0 and 0 < g_peak < t.max():
+    if max(e_peak, g_peak) >= t.max() - 2.0:
+        return ""  # the rise toward grazing (1/N·V), not a lobe: its width says nothing
+    e_width, g_width = _half_width(t, e), _half_width(t, g)
+    moved = abs(e_peak - g_peak) >= 3.0 and 0 < g_peak
+    wider = bool(e_width and g_width) and abs(g_width / e_width - 1.0) >= 0.2
+    # A wider or narrower lobe of the same model can move the peak too (an off-specular
+    # peak): the width parameter is named when its fitted lobe peaks where the student's does.
+    fit = (
+        fit_width(model, {**check.params, **params}, check, t, e_width, g_width) if wider else None
+    )
+    if fit and abs(fit[3] - g_peak) > 2.0:
+        fit = None
+    if moved and not fit:
         return (
             f"the lobe peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}° — check the "
             "reflected direction (or the half vector) and which vectors enter it"
         )
-    e_width, g_width = _half_width(t, e), _half_width(t, g)
-    if not (e_width and g_width) or abs(g_width / e_width - 1.0) < 0.2:
+    if not wider:
         return ""
     words = "too wide" if g_width > e_width else "too narrow"
     text = f"the lobe is {max(g_width, e_width) / min(g_width, e_width):.2g} times {words}"
-    if "ke" in params:  # cos^n: half maximum where cos(a)^n = 1/2
-        fit = math.log(0.5) / math.log(math.cos(math.radians(min(g_width / 2, 89.0))))
-        text += f" — it behaves like an exponent of about {fit:.3g} instead of {params['ke']:g}"
-    elif "m" in params:
-        text += f" — as if the roughness were about {params['m'] * g_width / e_width:.2g}"
-        text += f" instead of {params['m']:g}"
+    if moved:
+        text += f" and peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}°"
+    if fit:
+        what, value, actual, _ = fit
+        text += f" — as wide as {what} of about {float(f'{value:.2g}'):g} instead of {actual:g}"
     return text
+
+
+# Parameters that set a lobe's width, and how a hint names them.
+WIDTHS = {"ke": ("an exponent", 1.0, 1000.0), "m": ("a roughness m", 0.01, 1.0)}
+
+
+def fit_width(
+    model: str, params: dict, check: Check, t: np.ndarray, e_width: float, g_width: float
+) -> tuple[str, float, float, float] | None:
+    """(words, value, the check's value, peak θo) of the model's width parameter (ke, m)
+    whose lobe in lab.reference is as wide as the student's, if the reference reproduces
+    the solution's width (else None)."""
+    from lab import reference
+    from lab.constants import LUMA
+
+    name = next((n for n in WIDTHS if n in reference.DEFAULTS.get(model, {})), None)
+    if name is None:
+        return None
+    what, low, high = WIDTHS[name]
+    try:
+        known = {k: v for k, v in params.items() if k in reference.DEFAULTS[model]}
+        actual = float(reference.resolve(model, known)[name])
+        rows = np.stack(
+            [
+                np.full_like(t, check.theta_i),
+                np.full_like(t, check.phi_i),
+                t,
+                np.full_like(t, check.phi_i + 180.0),
+            ],
+            axis=1,
+        )
+
+        def lobe(value: float) -> np.ndarray:
+            return reference.brdf_angles(model, {**known, name: value}, rows) @ np.array(LUMA)
+
+        if abs(_half_width(t, lobe(actual)) / e_width - 1.0) > 0.15:
+            return None  # the reference does not reproduce the solution's lobe here
+        grid = np.geomspace(low, high, 150)
+        widths = np.array([_half_width(t, lobe(v)) for v in grid])
+    except (ValueError, KeyError, ZeroDivisionError):
+        return None
+    best = int(np.argmin(np.abs(widths - g_width)))
+    if not 0 < best < len(grid) - 1 or abs(widths[best] / g_width - 1.0) > 0.1:
+        return None  # beyond the parameter's range, or no value gives that width
+    return what, float(grid[best]), actual, float(t[np.argmax(lobe(float(grid[best])))])
 
 
 def _half_width(theta: np.ndarray, values: np.ndarray) -> float:

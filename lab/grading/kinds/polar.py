@@ -57,7 +57,7 @@ class PolarKind(ValueKind):
         }
         return result
 
-    def lobe(self, check: Check, angles: np.ndarray, expected, got) -> str:
+    def lobe(self, check: Check, angles: np.ndarray, expected, got, model: str = "") -> str:
         """The polar curve's peak and width (luminance), against the solution's."""
         lum = np.array(LUMA)
         return diagnosis.lobe(
@@ -66,6 +66,7 @@ class PolarKind(ValueKind):
             expected @ lum,
             np.nan_to_num(got) @ lum,
             check.params,
+            model,
         )
 
 
