@@ -134,12 +134,14 @@ def test_exercise_mode_shows_reference_yours_and_signed_difference(page, output_
 
 # Wrong submissions the grader's diagnosis names in different ways: a stored known mistake,
 # the wrong one of two declared terms with the shape of its error, the shape of the whole
-# error (a factor), the lobe's width.
+# error (a factor), the lobe's width with the exponent fitted from the grader's width table
+# (diagnosis.width_table, in exercises.json), a generated mutant (sphere images too).
 DIAGNOSED = [
     ("02_phong", "phong.glsl", ("kd * INV_PI", "kd")),
     ("02_phong", "phong.glsl", ("ks * pow(RoV, ke)", "ks * 3.0 * pow(RoV, ke)")),
     ("02_phong", "phong.glsl", ("pow(RoV, ke)", "pow(RoV, ke * 0.5)")),
-    ("07_geometric_attenuation", "geometry.glsl", ("min(1.0", "max(1.0")),
+    ("03_blinn_phong", "blinn_phong.glsl", ("pow(NoH, ke)", "pow(NoH, 4.0 * ke)")),
+    ("07_geometric_attenuation", "geometry.glsl", ("max(VoH, EPS)", "max(NoL, EPS)")),
 ]
 
 
@@ -164,6 +166,8 @@ def test_practice_diagnosis_equals_the_grader(page, tmp_path, exercise, student_
         assert likely(shown[name][1]) == likely(message), (name, shown[name][1], message)
         named += bool(likely(message))
     assert named, f"the grader names no likely mistake for {slip}: pick another slip"
+    if slip[0].startswith("pow("):  # the exponent scaled: fitted from the same table
+        assert any("exponent of about" in likely(m) for _, m in graded.values()), graded
     assert page.errors == []
 
 

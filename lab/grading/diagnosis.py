@@ -8,6 +8,7 @@ test asks for the pattern on (nearly) every row, and says nothing otherwise.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -211,9 +212,8 @@ def lobe(
     wider = bool(e_width and g_width) and abs(g_width / e_width - 1.0) >= 0.2
     # A wider or narrower lobe of the same model can move the peak too (an off-specular
     # peak): the width parameter is named when its fitted lobe peaks where the student's does.
-    fit = (
-        fit_width(model, {**check.params, **params}, check, t, e_width, g_width) if wider else None
-    )
+    table = width_table(model, {**check.params, **params}, check, t) if wider else None
+    fit = fit_width(table, e_width, g_width)
     if fit and abs(fit[3] - g_peak) > 2.0:
         fit = None
     if moved and not fit:
@@ -235,47 +235,79 @@ def lobe(
 
 # Parameters that set a lobe's width, and how a hint names them.
 WIDTHS = {"ke": ("an exponent", 1.0, 1000.0), "m": ("a roughness m", 0.01, 1.0)}
+WIDTH_STEPS = 150  # values of the width parameter in a table, evenly spaced in log
 
 
-def fit_width(
-    model: str, params: dict, check: Check, t: np.ndarray, e_width: float, g_width: float
-) -> tuple[str, float, float, float] | None:
-    """(words, value, the check's value, peak θo) of the model's width parameter (ke, m)
-    whose lobe in lab.reference is as wide as the student's, if the reference reproduces
-    the solution's width (else None)."""
+def width_table(model: str, params: dict, check: Check, t: np.ndarray) -> dict | None:
+    """The widths (full width at half height, degrees, luminance) of the model's lobe in
+    lab.reference at the check's light, over θo = `t`, for WIDTH_STEPS values of its width
+    parameter (ke or m), with each one's peak; None for a model without one.
+
+    fit_width reads only this table; exercises.json carries the same table for each polar
+    check, so the web page names the same value as the grader."""
+    key = tuple(sorted((k, tuple(v) if isinstance(v, list) else v) for k, v in params.items()))
+    angles = (float(check.theta_i), float(check.phi_i))
+    return _width_table(model, key, angles, tuple(float(x) for x in t))
+
+
+@functools.lru_cache(maxsize=64)
+def _width_table(model: str, params: tuple, light: tuple, t: tuple) -> dict | None:
     from lab import reference
     from lab.constants import LUMA
 
-    name = next((n for n in WIDTHS if n in reference.DEFAULTS.get(model, {})), None)
+    defaults = reference.DEFAULTS.get(model, {})
+    name = next((n for n in WIDTHS if n in defaults), None)
     if name is None:
         return None
     what, low, high = WIDTHS[name]
+    theta = np.array(t)
+    rows = np.stack(
+        [
+            np.full_like(theta, light[0]),
+            np.full_like(theta, light[1]),
+            theta,
+            np.full_like(theta, light[1] + 180.0),
+        ],
+        axis=1,
+    )
+    known = {k: v for k, v in params if k in defaults}
     try:
-        known = {k: v for k, v in params.items() if k in reference.DEFAULTS[model]}
         actual = float(reference.resolve(model, known)[name])
-        rows = np.stack(
-            [
-                np.full_like(t, check.theta_i),
-                np.full_like(t, check.phi_i),
-                t,
-                np.full_like(t, check.phi_i + 180.0),
-            ],
-            axis=1,
-        )
 
         def lobe(value: float) -> np.ndarray:
             return reference.brdf_angles(model, {**known, name: value}, rows) @ np.array(LUMA)
 
-        if abs(_half_width(t, lobe(actual)) / e_width - 1.0) > 0.15:
-            return None  # the reference does not reproduce the solution's lobe here
-        grid = np.geomspace(low, high, 150)
-        widths = np.array([_half_width(t, lobe(v)) for v in grid])
+        solution_width = _half_width(theta, lobe(actual))
+        if not solution_width:
+            return None  # no lobe (a diffuse term alone): fit_width would find nothing
+        grid = np.geomspace(low, high, WIDTH_STEPS)
+        lobes = [lobe(v) for v in grid]
     except (ValueError, KeyError, ZeroDivisionError):
         return None
+    return {
+        "param": name,
+        "words": what,
+        "actual": actual,
+        "solution_width": solution_width,
+        "values": [float(v) for v in grid],
+        "widths": [_half_width(theta, v) for v in lobes],
+        "peaks": [float(theta[np.argmax(v)]) for v in lobes],
+    }
+
+
+def fit_width(
+    table: dict | None, e_width: float, g_width: float
+) -> tuple[str, float, float, float] | None:
+    """(words, value, the check's value, peak θo) of the width parameter whose lobe in the
+    table is as wide as the student's, if the table reproduces the solution's width (else
+    None: the reference is no model of this lobe)."""
+    if not table or abs(table["solution_width"] / e_width - 1.0) > 0.15:
+        return None
+    widths = np.array(table["widths"])
     best = int(np.argmin(np.abs(widths - g_width)))
-    if not 0 < best < len(grid) - 1 or abs(widths[best] / g_width - 1.0) > 0.1:
+    if not 0 < best < len(widths) - 1 or abs(widths[best] / g_width - 1.0) > 0.1:
         return None  # beyond the parameter's range, or no value gives that width
-    return what, float(grid[best]), actual, float(t[np.argmax(lobe(float(grid[best])))])
+    return table["words"], table["values"][best], table["actual"], table["peaks"][best]
 
 
 def _half_width(theta: np.ndarray, values: np.ndarray) -> float:

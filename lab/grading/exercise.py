@@ -63,6 +63,18 @@ class Exercise:
         return self.folder.parent.parent / "solutions" / self.folder.name / self.student_file
 
     @property
+    def model_name(self) -> str:
+        """The library model a submission stands for (what lab.reference evaluates): the
+        wrapper's or sampled model's, else the stub's @model line (not the student's)."""
+        if self.wrapper or self.sampler_for:
+            return str(self.wrapper or self.sampler_for)
+        try:
+            found = re.search(r"^//\s*@model\s+(\w+)", self.stub.read_text("utf-8"), re.M)
+        except OSError:
+            return ""
+        return found.group(1) if found else ""
+
+    @property
     def max_points(self) -> float:
         return sum(c.points for c in self.checks)
 

@@ -325,7 +325,7 @@ class Explainer:
                 wrong.append(name)
                 detail[name] = diagnosis.shape(term_check, angles, want, mine) or kind_of(
                     check
-                ).lobe(term_check, angles, want, mine, model.name)
+                ).lobe(term_check, angles, want, mine, exercise.model_name)
         wrong, right = _finest(wrong, right, parent)
         if not wrong or not right:
             return ""

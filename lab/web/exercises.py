@@ -17,7 +17,7 @@ from dataclasses import asdict
 
 import numpy as np
 
-from lab.grading import mistakes
+from lab.grading import diagnosis, mistakes
 from lab.grading.exercise import Exercise, ExerciseError, find_exercises
 from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.resources import data_dir
@@ -63,6 +63,7 @@ def check_entry(exercise: Exercise, check, values, stored=None, hints=None) -> d
         angles = kind.angles(check)
         theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])
         entry["lobe_theta"] = theta.tolist()
+        entry["lobe_fit"] = lobe_fit(exercise, check, theta)
     return {**entry, **practice}
 
 
@@ -74,6 +75,24 @@ def grader_only(exercise: Exercise, values) -> list[dict]:
             why = f"the page cannot run {check.kind} checks"
             out.append({"name": check.name, "kind": check.kind, "points": check.points, "why": why})
     return out
+
+
+def lobe_fit(exercise: Exercise, check, theta: np.ndarray) -> dict:
+    """The grader's width tables (diagnosis.width_table) for this polar check's lobe and
+    for each term the page judges alone: the page fits the exponent or roughness of a
+    lobe of the wrong width from the very numbers the grader fits it from."""
+    settings = {"": {}}
+    settings.update(
+        (name, params)
+        for name, spec in mistakes.read_terms(exercise).items()
+        for params, defines, _ in [mistakes.term_parts(spec)]
+        if not defines
+    )
+    side = theta[theta >= 0.0]
+    return {
+        name: diagnosis.width_table(exercise.model_name, {**check.params, **params}, check, side)
+        for name, params in settings.items()
+    }
 
 
 def exercise_entry(exercise: Exercise) -> dict:

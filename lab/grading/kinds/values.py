@@ -49,7 +49,7 @@ class ValueKind(CheckKind):
         text = explainer.terms(exercise, check, model, angles, live)
         text = text or diagnosis.shape(check, angles, expected, got)
         text = text or explainer.swaps(check, model, angles, expected)
-        return text or self.lobe(check, angles, expected, got, model.name)
+        return text or self.lobe(check, angles, expected, got, exercise.model_name)
 
     def lobe(self, check: Check, angles: np.ndarray, expected, got, model: str = "") -> str:
         """What the values' lobe says (peak, width), where the rows form one; '' here."""

@@ -216,8 +216,12 @@ function halfWidth(theta, values) {
 
 const argmax = (values) => values.reduce((best, v, i) => (v > values[best] ? i : best), 0);
 
-/** diagnosis.lobe: the polar curve's peak in the wrong place, or a lobe too wide/narrow. */
-export function lobe(check, theta, expected, got, params) {
+/**
+ * diagnosis.lobe: the polar curve's peak in the wrong place, or a lobe too wide or too
+ * narrow, with the width parameter fitted from `table` (diagnosis.width_table, computed by
+ * the grader's code when exercises.json is made: the same table the grader reads).
+ */
+export function lobe(check, theta, expected, got, params, table = null) {
   const side = theta.map((t) => t >= 0);
   const e = expected.filter((_, i) => side[i]);
   const gv = got.filter((_, i) => side[i]);
@@ -228,23 +232,38 @@ export function lobe(check, theta, expected, got, params) {
   const peaked = Math.max(...gv) > 1.5 * Math.min(gv[0], gv[gv.length - 1]) + check.atol &&
     Math.max(...e) > 1.5 * Math.min(e[0], e[e.length - 1]);
   if (!peaked) return "";
-  if (Math.abs(ePeak - gPeak) >= 3 && gPeak > 0 && gPeak < Math.max(...t)) {
+  if (Math.max(ePeak, gPeak) >= Math.max(...t) - 2) return ""; // the rise toward grazing
+  const eWidth = halfWidth(t, e);
+  const gWidth = halfWidth(t, gv);
+  const moved = Math.abs(ePeak - gPeak) >= 3 && gPeak > 0;
+  const wider = Boolean(eWidth && gWidth) && Math.abs(gWidth / eWidth - 1) >= 0.2;
+  let fit = wider ? fitWidth(table, eWidth, gWidth) : null;
+  if (fit && Math.abs(fit[3] - gPeak) > 2) fit = null;
+  if (moved && !fit) {
     return `the lobe peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}° — check the ` +
       "reflected direction (or the half vector) and which vectors enter it";
   }
-  const eWidth = halfWidth(t, e);
-  const gWidth = halfWidth(t, gv);
-  if (!(eWidth && gWidth) || Math.abs(gWidth / eWidth - 1) < 0.2) return "";
+  if (!wider) return "";
   const words = gWidth > eWidth ? "too wide" : "too narrow";
   let text = `the lobe is ${g(Math.max(gWidth, eWidth) / Math.min(gWidth, eWidth), 2)} times ${words}`;
-  if ("ke" in params) {
-    const fit = Math.log(0.5) / Math.log(Math.cos((Math.min(gWidth / 2, 89) * Math.PI) / 180));
-    text += ` — it behaves like an exponent of about ${g(fit, 3)} instead of ${formatG(params.ke)}`;
-  } else if ("m" in params) {
-    text += ` — as if the roughness were about ${g((params.m * gWidth) / eWidth, 2)}`;
-    text += ` instead of ${formatG(params.m)}`;
+  if (moved) text += ` and peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}°`;
+  if (fit) {
+    const [what, value, actual] = fit;
+    text += ` — as wide as ${what} of about ${formatG(Number(g(value, 2)))} instead of ${formatG(actual)}`;
   }
   return text;
+}
+
+/** diagnosis.fit_width: [words, value, the check's value, peak θo] or null. */
+export function fitWidth(table, eWidth, gWidth) {
+  if (!table || Math.abs(table.solution_width / eWidth - 1) > 0.15) return null;
+  let best = 0;
+  for (let i = 1; i < table.widths.length; i++) {
+    if (Math.abs(table.widths[i] - gWidth) < Math.abs(table.widths[best] - gWidth)) best = i;
+  }
+  if (best <= 0 || best >= table.widths.length - 1) return null;
+  if (Math.abs(table.widths[best] / gWidth - 1) > 0.1) return null;
+  return [table.words, table.values[best], table.actual, table.peaks[best]];
 }
 
 export function termsSentence(wrong, right, detail) {
@@ -331,7 +350,9 @@ export function explain(exercise, check, expected, got, angles, evaluate, luma) 
   let text = terms(exercise, check, angles, stored, evaluate, luma);
   text ||= shape(check, angles, expected, got);
   text ||= swaps(check, angles, expected, evaluate);
-  if (!text && check.kind === "polar") text = polarLobe(check, expected, got, check.params, luma);
+  if (!text && check.kind === "polar") {
+    text = polarLobe(check, expected, got, check.params, luma, check.lobe_fit?.[""]);
+  }
   return sentence(text);
 }
 
@@ -351,7 +372,9 @@ function terms(exercise, check, angles, stored, evaluate, luma) {
       wrong.push(name);
       const termCheck = { ...check, params };
       detail ||= shape(termCheck, angles, want, mine);
-      if (!detail && check.kind === "polar") detail = polarLobe(termCheck, want, mine, params, luma);
+      if (!detail && check.kind === "polar") {
+        detail = polarLobe(termCheck, want, mine, params, luma, check.lobe_fit?.[name]);
+      }
     }
   }
   if (!wrong.length || !right.length) return "";
@@ -375,7 +398,7 @@ function swaps(check, angles, expected, evaluate) {
   return "";
 }
 
-function polarLobe(check, expected, got, params, luma) {
+function polarLobe(check, expected, got, params, luma, table) {
   const lum = (row) => row.reduce((s, x, c) => s + (Number.isNaN(x) ? 0 : x === Infinity ? 1.7976931348623157e308 : x) * luma[c], 0);
-  return lobe(check, check.lobe_theta, expected.map(lum), got.map(lum), params);
+  return lobe(check, check.lobe_theta, expected.map(lum), got.map(lum), params, table);
 }
