@@ -172,6 +172,7 @@ class Explainer:
         self._variants: dict[Path, list[mistakes.Variant]] = {}
         self._solution_code: dict[Path, str] = {}
         self._matched: dict[tuple[Path, str], str | None] = {}
+        self._shown: dict[tuple[Path, str], dict[str, np.ndarray]] = {}
 
     def variants(self, exercise: Exercise) -> list[mistakes.Variant]:
         """Known mistakes and single-edit mutants of the solution (hidden mode renders
@@ -228,7 +229,7 @@ class Explainer:
 
     def plausible(self, exercise: Exercise, check: Check, model: Model) -> list[str]:
         """The kept variants worth rendering live for a check: at its committed settings
-        (stored values) those the student's program matches, and where the student's
+        (stored values) the one the student's program matches, or, where the student's
         program is right there, those that are right there too: they may show only under
         random settings. A few compiles, not one per variant."""
         kind, renderer, stored = kind_of(check), self.grader.renderer, self.stored(exercise)
@@ -239,20 +240,26 @@ class Explainer:
             fixed = next((c for c in exercise.checks if c.name == check.name), None)
             prefix = f"{check.name}|"
             want = self.grader.expected(exercise, fixed, live=False) if fixed else None
-        kept = [v.key for v in self.variants(exercise) if v.key in mistakes.read_hints(exercise)]
+        hints = mistakes.read_hints(exercise)
+        kept = [v.key for v in self.variants(exercise) if v.key in hints]
         if want is None:
             return kept  # references without them: every variant is plausible
+        memo = (exercise.references, fixed.name)
+        if memo not in self._shown:  # the variants the committed settings tell apart
+            self._shown[memo] = {
+                k: stored[prefix + k]
+                for k in kept
+                if prefix + k in stored and not kind.live_same(fixed, stored[prefix + k], want)
+            }
+        shown = self._shown[memo]
         mine = kind.live_values(renderer, model, fixed)
-        right = kind.live_same(fixed, mine, want)
-        out = []
-        for key in kept:
-            theirs = stored.get(prefix + key)
-            if theirs is None or kind.live_same(fixed, theirs, want):
-                if right:
-                    out.append(key)
-            elif not right and kind.live_match(fixed, mine, want, {key: theirs}) == key:
-                out.append(key)
-        return out
+        if kind.live_same(fixed, mine, want):
+            return [k for k in kept if k not in shown]
+        if kind.by_program:
+            match = kind.live_match(fixed, mine, want, shown)
+        else:
+            match = kind.nearest(fixed, mine, want, shown)
+        return [match] if match else []
 
     def _live_match(self, exercise, check, model, got, expected) -> str | None:
         kind, renderer = kind_of(check), self.grader.renderer
