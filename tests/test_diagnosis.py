@@ -202,6 +202,7 @@ CORPUS = [
     ("02_phong", "exponent doubled", [("pow(RoV, ke)", "pow(RoV, 2.0 * ke)")], "exponent of about"),
     ("03_blinn_phong", "pi on ks", [("ks * pow(NoH, ke)", "PI * ks * pow(NoH, ke)")], "π times"),
     ("05_ward", "extra N.V", [("ks * spec", "ks * spec * NoV")], "cos θo"),
+    ("02_phong", "abs(R.V)", [("max(dot(R, V), 0.0)", "abs(dot(R, V))")], "solution clamps"),
 ]
 
 # Rewrites that are correct: they must pass and get no diagnosis at all.

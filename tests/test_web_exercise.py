@@ -20,6 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # (exercise, the solution's file, a wrong version of it: one typical slip)
 CASES = [
     ("02_phong", "phong.glsl", ("pow(RoV, ke)", "pow(RoV, ke * 0.5)")),
+    ("02_phong", "phong.glsl", ("max(dot(R, V), 0.0)", "abs(dot(R, V))")),
     ("07_geometric_attenuation", "geometry.glsl", ("min(1.0", "max(1.0")),
 ]
 
@@ -142,6 +143,7 @@ DIAGNOSED = [
     ("02_phong", "phong.glsl", ("pow(RoV, ke)", "pow(RoV, ke * 0.5)")),
     ("03_blinn_phong", "blinn_phong.glsl", ("pow(NoH, ke)", "pow(NoH, 4.0 * ke)")),
     ("07_geometric_attenuation", "geometry.glsl", ("max(VoH, EPS)", "max(NoL, EPS)")),
+    ("02_phong", "phong.glsl", ("max(dot(R, V), 0.0)", "abs(dot(R, V))")),
 ]
 
 

@@ -117,9 +117,15 @@ def shape(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarra
         )
     zero = (expected <= 0.0).all(axis=-1)
     if zero[wrong].all():
+        below = np.maximum(angles[:, 0], angles[:, 2]) >= 90.0
+        if below[wrong].all():
+            return (
+                "the values are wrong only where the solution is 0 (light or view below the "
+                "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0"
+            )
         return (
-            "the values are wrong only where the solution is 0 (light or view below the "
-            "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0"
+            "the values are wrong only where the solution is 0, with light and view above "
+            "the surface — a dot product that the solution clamps (max(..., 0.0)) is not"
         )
     for phrase in (
         _ratio(check, angles, expected, got),

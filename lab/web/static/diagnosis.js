@@ -134,8 +134,13 @@ export function shape(check, angles, expected, got) {
   }
   const zero = expected.map((row) => row.every((x) => x <= 0));
   if (wrong.every((w, i) => !w || zero[i])) {
-    return "the values are wrong only where the solution is 0 (light or view below the " +
-      "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0";
+    const below = angles.map((a) => Math.max(a[0], a[2]) >= 90);
+    if (wrong.every((w, i) => !w || below[i])) {
+      return "the values are wrong only where the solution is 0 (light or view below the " +
+        "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0";
+    }
+    return "the values are wrong only where the solution is 0, with light and view above " +
+      "the surface — a dot product that the solution clamps (max(..., 0.0)) is not";
   }
   return ratioShape(check, angles, expected, got) || oneChannel(check, expected, got, wrong) ||
     grazing(angles, wrong, zero);
