@@ -36,7 +36,7 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
     }
     values: dict[str, np.ndarray] = {}
     hints: dict[str, str] = {}
-    kept: list[dict[str, np.ndarray]] = []
+    kept: list[tuple[str, dict[str, np.ndarray]]] = []  # (variant key, its failing values)
     hidden_only: list[list[np.ndarray]] = []
     by_name = {c.name: c for c in exercise.checks}
     variants = mistakes.variants(exercise, solution)
@@ -55,10 +55,14 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
                 break
             if differs(check, got, references[check.name]):
                 mine[check.name] = got
-        duplicate = any(
-            mine.keys() == other.keys()
-            and all(not differs(by_name[n], mine[n], other[n]) for n in mine)
-            for other in kept
+        twin = next(
+            (
+                key
+                for key, other in kept
+                if mine.keys() == other.keys()
+                and all(not differs(by_name[n], mine[n], other[n]) for n in mine)
+            ),
+            None,
         )
         if not mine:  # the same as the solution at every committed setting
             seen = _hidden_values(exercise, grader, model)
@@ -66,9 +70,13 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
                 hidden_only.append(seen)  # it shows under hidden mode's random settings
                 hints[variant.key] = variant.hint
             continue
-        if duplicate and variant.key.startswith("mutant."):
+        if twin and variant.key.startswith("mutant."):
+            # Two edits that behave alike: the student may have made either (2 N·H / N·H
+            # and 2 V·H / V·H), so a generated hint names both; a stored one stands.
+            if twin.startswith("mutant."):
+                hints[twin] = mistakes.either(hints[twin], variant.hint)
             continue
-        kept.append(mine)
+        kept.append((variant.key, mine))
         hints[variant.key] = variant.hint
         values.update({f"{name}|{variant.key}": v for name, v in mine.items()})
     values.update(_fingerprints(exercise, grader, [v for v in variants if v.key in hints]))

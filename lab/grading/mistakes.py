@@ -172,7 +172,10 @@ def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
         a, b = match.groups()
         for x, y in (("L", "V"), ("V", "L"), ("L", "H"), ("V", "H")):
             if b == x:
-                hint = f"a dot product uses {y} where {x} belongs ({a}·{y} instead of {a}·{x})"
+                hint = (
+                    f"a term behaves like {a}·{y} where {a}·{x} belongs: check which dot "
+                    "product each factor uses"
+                )
                 add(start + match.start(), start + match.end(), f"dot({a}, {y})", hint)
     for match in re.finditer(r"max\((dot\([^()]*\)), (0\.0|EPS)\)", body):
         add(
@@ -195,6 +198,18 @@ def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
         )
         add(start + match.start(), start + match.end(), f"{trig}(radians({angle}))", hint)
     return found[:limit]
+
+
+def either(first: str, second: str) -> str:
+    """One hint for two edits that behave alike: 'X, or Y: advice' when both end in the
+    same advice."""
+    if second in first:
+        return first
+    head, _, advice = first.rpartition(": ")
+    other, _, other_advice = second.rpartition(": ")
+    if head and advice == other_advice:
+        return f"{head}, or {other}: {advice}"
+    return f"{first}; or else {second}"
 
 
 def variants(exercise: Exercise, code: str) -> list[Variant]:
