@@ -203,7 +203,6 @@ CORPUS = [
     ("03_blinn_phong", "pi on ks", [("ks * pow(NoH, ke)", "PI * ks * pow(NoH, ke)")], "π times"),
     ("05_ward", "extra N.V", [("ks * spec", "ks * spec * NoV")], "cos θo"),
     ("02_phong", "abs(R.V)", [("max(dot(R, V), 0.0)", "abs(dot(R, V))")], "solution clamps"),
-    # two generated edits that behave alike (2 N·H / N·H = 2 V·H / V·H): both are named
     (
         "07_geometric_attenuation",
         "N.H for V.H",
@@ -298,8 +297,7 @@ def test_share_of_the_corpus_diagnosed_correctly(graded):
 
 
 def test_edits_that_behave_alike_are_both_named(graded):
-    """2 N·H / N·H and 2 V·H / V·H give the same G: the student made one of the two edits,
-    and the hint must not name only the other."""
+    """2 N·H / N·H and 2 V·H / V·H give the same G: the hint names both possible edits."""
     said = diagnoses(graded["corpus", "07_geometric_attenuation", "N.H for V.H"])
     assert said and all("N·H where V·H belongs" in d and "V·H where N·H belongs" in d for d in said)
     said = diagnoses(graded["corpus", "06_microfacet_distributions", "alpha in degrees"])
