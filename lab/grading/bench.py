@@ -121,7 +121,9 @@ def diagnosis_cost(repeat: int = 5) -> list[tuple]:
             path.parent.mkdir(parents=True)
             for text in _wrongs(exercise.solution.read_text(encoding="utf-8")):
                 path.write_text(text, encoding="utf-8")
-                if not all(r.passed for r in plain.run(exercise, path)):
+                results = list(plain.run(exercise, path))
+                # Wrong values, not a compile error (which has nothing to diagnose).
+                if not all(r.passed for r in results) and not any(r.errors for r in results):
                     break
             else:
                 continue
