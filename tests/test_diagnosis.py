@@ -203,6 +203,7 @@ CORPUS = [
     ("03_blinn_phong", "pi on ks", [("ks * pow(NoH, ke)", "PI * ks * pow(NoH, ke)")], "π times"),
     ("05_ward", "extra N.V", [("ks * spec", "ks * spec * NoV")], "cos θo"),
     ("02_phong", "abs(R.V)", [("max(dot(R, V), 0.0)", "abs(dot(R, V))")], "solution clamps"),
+    ("06_microfacet_distributions", "m 1.5x", [("m2 = m * m", "m2 = 2.25 * m * m")], "m of about"),
     (
         "07_geometric_attenuation",
         "N.H for V.H",

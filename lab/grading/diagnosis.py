@@ -218,11 +218,19 @@ def lobe(
     wider = bool(e_width and g_width) and abs(g_width / e_width - 1.0) >= 0.2
     # A wider or narrower lobe of the same model can move the peak too (an off-specular
     # peak): the width parameter is named when its fitted lobe peaks where the student's does.
-    table = width_table(model, {**check.params, **params}, check, t) if wider else None
-    fit = fit_width(table, e_width, g_width)
+    table = width_table(model, {**check.params, **params}, check, t) if wider or moved else None
+    fit = fit_width(table, e_width, g_width) if wider else None
     if fit and abs(fit[3] - g_peak) > 2.0:
         fit = None
     if moved and not fit:
+        # Beckmann's or Cook-Torrance's peak moves with the roughness at an equal width.
+        peak = fit_peak(table, e_width, g_width, g_peak)
+        if peak:
+            what, value, actual, _ = peak
+            return (
+                f"the lobe peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}°, as it does "
+                f"with {what} of about {float(f'{value:.2g}'):g} instead of {actual:g}"
+            )
         return (
             f"the lobe peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}° — check the "
             "reflected direction (or the half vector) and which vectors enter it"
@@ -313,6 +321,22 @@ def fit_width(
     best = int(np.argmin(np.abs(widths - g_width)))
     if not 0 < best < len(widths) - 1 or abs(widths[best] / g_width - 1.0) > 0.1:
         return None  # beyond the parameter's range, or no value gives that width
+    return table["words"], table["values"][best], table["actual"], table["peaks"][best]
+
+
+def fit_peak(
+    table: dict | None, e_width: float, g_width: float, g_peak: float
+) -> tuple[str, float, float, float] | None:
+    """As fit_width, for a lobe that peaks elsewhere: the width parameter whose lobe in the
+    table peaks where the student's does (within 2°) and is as wide (within 10 %)."""
+    if not table or not g_width or abs(table["solution_width"] / e_width - 1.0) > 0.15:
+        return None
+    widths, peaks = np.array(table["widths"]), np.array(table["peaks"])
+    near = (np.abs(peaks - g_peak) <= 2.0) & (np.abs(widths / g_width - 1.0) <= 0.1)
+    near[[0, -1]] = False  # the ends of the parameter's range
+    if not near.any():
+        return None
+    best = int(np.argmin(np.where(near, np.abs(peaks - g_peak) + np.abs(widths - g_width), np.inf)))
     return table["words"], table["values"][best], table["actual"], table["peaks"][best]
 
 

@@ -245,6 +245,13 @@ export function lobe(check, theta, expected, got, params, table = null) {
   let fit = wider ? fitWidth(table, eWidth, gWidth) : null;
   if (fit && Math.abs(fit[3] - gPeak) > 2) fit = null;
   if (moved && !fit) {
+    // Beckmann's or Cook-Torrance's peak moves with the roughness at an equal width.
+    const peak = fitPeak(table, eWidth, gWidth, gPeak);
+    if (peak) {
+      const [what, value, actual] = peak;
+      return `the lobe peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}°, as it does ` +
+        `with ${what} of about ${formatG(Number(g(value, 2)))} instead of ${formatG(actual)}`;
+    }
     return `the lobe peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}° — check the ` +
       "reflected direction (or the half vector) and which vectors enter it";
   }
@@ -269,6 +276,20 @@ export function fitWidth(table, eWidth, gWidth) {
   if (best <= 0 || best >= table.widths.length - 1) return null;
   if (Math.abs(table.widths[best] / gWidth - 1) > 0.1) return null;
   return [table.words, table.values[best], table.actual, table.peaks[best]];
+}
+
+/** diagnosis.fit_peak: the width parameter whose lobe peaks where the student's does. */
+export function fitPeak(table, eWidth, gWidth, gPeak) {
+  if (!table || !gWidth || Math.abs(table.solution_width / eWidth - 1) > 0.15) return null;
+  let best = -1;
+  let bestCost = Infinity;
+  for (let i = 1; i < table.widths.length - 1; i++) {
+    const offPeak = Math.abs(table.peaks[i] - gPeak);
+    if (offPeak > 2 || Math.abs(table.widths[i] / gWidth - 1) > 0.1) continue;
+    const cost = offPeak + Math.abs(table.widths[i] - gWidth);
+    if (cost < bestCost) [best, bestCost] = [i, cost];
+  }
+  return best < 0 ? null : [table.words, table.values[best], table.actual, table.peaks[best]];
 }
 
 export function termsSentence(wrong, right, detail) {

@@ -64,6 +64,10 @@ const PENDING = "not run for this version: press “run the sampling checks” (
 /** The student's text as a model every view renders, named after the exercise. */
 export function buildSubmission(exercise, text, path, models) {
   checkFunctions(text, exercise.functions, path);
+  return { ...submission(exercise, text, path, models), exactTrig: true }; // as the grader's cos
+}
+
+function submission(exercise, text, path, models) {
   if (exercise.sampler_for) {
     // A sampler: the library model with the student's functions in front and made its
     // sampler, for the sampling views (ibl_sample, ibl_pdf) of sampling.js.
@@ -332,6 +336,11 @@ export class ExerciseMode {
     const path = exercise.student_file;
     lab.models[exercise.name] = buildSubmission(exercise, exercise.stub, path, lab.models);
     if (!lab.order.includes(exercise.name)) lab.order.push(exercise.name);
+    // One exercise at a time: the last one's panel goes (else, exercise after exercise, the
+    // page runs out of panels and the next one cannot open).
+    if (this.panel && this.panel.name !== exercise.name && lab.panels.includes(this.panel)) {
+      this.env.removePanel(this.panel);
+    }
     this.panel = lab.panels.find((p) => p.name === exercise.name) || this.env.addPanel(exercise.name);
     await this.env.openEditor(this.panel, exercise.stub, {
       path,

@@ -989,7 +989,8 @@ async function openExercise(name) {
       const panel = addPanel(n);
       scheduleRender();
       return panel;
-    } });
+    },
+    removePanel });
   await exercises.open(name);
   writeHash();
 }
