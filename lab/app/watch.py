@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lab.app.student_file import StudentFile
 from lab.glsl import ShaderCompileError, loop_warning
 from lab.models import ModelError
 
@@ -40,39 +41,16 @@ void main() { color = texture(u_image, uv); }
 """
 
 
-class ExerciseView:
+class ExerciseView(StudentFile):
     """How the grader sees a student's file: its exercise, first sphere check, reference."""
 
     def __init__(self, path: Path):
-        from lab.grading.exercise import load_exercise
-
-        self.exercise = load_exercise(path.parent)
+        super().__init__(path)
         self.check = next(c for c in self.exercise.checks if c.kind == "sphere")
         self.reference_path = self.exercise.references / f"{self.check.name}.png"
 
-    @classmethod
-    def find(cls, path: Path) -> ExerciseView | None:
-        """The view for `path` if it is the student file of an exercise with a sphere check."""
-        from lab.grading.exercise import ExerciseError
-
-        if not (path.parent / "exercise.toml").is_file():
-            return None
-        try:
-            view = cls(path)
-        except (ExerciseError, StopIteration, OSError):
-            return None
-        if view.exercise.student_file != path.name or not view.reference_path.is_file():
-            return None
-        return view
-
-    def load(self, path: Path):
-        """The submission as the grader builds it (raises ModelError on a bad file)."""
-        from lab.grading.exercise import SubmissionError, build_model, read_submission
-
-        try:
-            return build_model(self.exercise, path, read_submission(path))
-        except SubmissionError as err:
-            raise ModelError(str(err)) from None
+    def shows(self) -> bool:
+        return self.reference_path.is_file()
 
     def sphere(self, renderer, model) -> np.ndarray:
         """The sphere check's render, tone-mapped to 8-bit RGBA as its reference is."""

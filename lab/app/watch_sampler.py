@@ -13,45 +13,22 @@ from pathlib import Path
 
 import numpy as np
 
+from lab.app.student_file import StudentFile
+
 SHOWN_KINDS = ("chi_square", "pdf_integral")  # quick enough to rerun on every save
 PANELS = ("your samples", "your pdf", "solution's pdf")
 
 
-class SamplerView:
+class SamplerView(StudentFile):
     """The checks of a sampling exercise that run in a second, on the student's file."""
 
     def __init__(self, path: Path):
-        from lab.grading.exercise import load_exercise
-
-        self.exercise = load_exercise(path.parent)
+        super().__init__(path)
         self.checks = [c for c in self.exercise.checks if c.kind in SHOWN_KINDS]
         self.left_out = [c.name for c in self.exercise.checks if c.kind not in SHOWN_KINDS]
 
-    @classmethod
-    def find(cls, path: Path) -> SamplerView | None:
-        """The view for `path` if it is the student file of a sampling exercise."""
-        from lab.grading.exercise import ExerciseError
-
-        if not (path.parent / "exercise.toml").is_file():
-            return None
-        try:
-            view = cls(path)
-        except (ExerciseError, OSError):
-            return None
-        exercise = view.exercise
-        if not exercise.sampler_for or exercise.student_file != path.name or not view.checks:
-            return None
-        return view
-
-    def load(self, path: Path):
-        """The library model with the student's sampler (raises ModelError on a bad file)."""
-        from lab.grading.exercise import SubmissionError, build_model, read_submission
-        from lab.models import ModelError
-
-        try:
-            return build_model(self.exercise, path, read_submission(path))
-        except SubmissionError as err:
-            raise ModelError(str(err)) from None
+    def shows(self) -> bool:
+        return bool(self.exercise.sampler_for and self.checks)
 
     def judge(self, renderer, model) -> tuple[list[str], list[np.ndarray]]:
         """Each check's verdict line, and the histograms of the first chi-square check
