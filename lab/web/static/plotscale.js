@@ -25,3 +25,10 @@ export function polarRadius(f, top, log, decades) {
   }
   return Math.min(Math.max(r, 0), 1);
 }
+
+/** Axes text for a canvas plot: a small font in canvas pixels. */
+export function font(ctx, canvas, px = 12) {
+  const size = Math.round((px * canvas.width) / (canvas.clientWidth || canvas.width));
+  ctx.font = `${size}px system-ui, sans-serif`;
+  return size;
+}

@@ -4,6 +4,7 @@
 // Left: g and its series at order L in the plane of incidence; right: the relative L2
 // error over the hemisphere against the order.
 import { formatG } from "./header.js";
+import { font } from "./plotscale.js";
 
 export const MAX_ORDER = 16;
 export const GRID = [48, 96]; // Gauss-Legendre nodes in cos θ × uniform φ (sh_view.GRID)
@@ -288,8 +289,7 @@ export class SHView {
     const { lab, C } = this.env;
     const canvas = this.canvas;
     const ctx = canvas.getContext("2d");
-    const px = Math.round((12 * canvas.width) / (canvas.clientWidth || canvas.width));
-    ctx.font = `${px}px system-ui, sans-serif`;
+    const px = font(ctx, canvas);
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.fillStyle = "#bbb";
     if (!this.data) {

@@ -2,6 +2,7 @@
 // G against θo in light 1's plane of incidence, F against θd, from the model's own
 // MICROFACET_TERMS through shaders/views/terms.glsl.
 import { formatG } from "./header.js";
+import { font } from "./plotscale.js";
 
 const TERMS_FUNCTION = /\bvoid\s+MICROFACET_TERMS\s*\(/;
 const ANGLES = Array.from({ length: 91 }, (_, k) => k); // θh for D, θd for F (degrees)
@@ -64,8 +65,7 @@ export class TermsView {
     const { lab, C } = this.env;
     const canvas = this.canvas;
     const ctx = canvas.getContext("2d");
-    const px = Math.round((12 * canvas.width) / (canvas.clientWidth || canvas.width));
-    ctx.font = `${px}px system-ui, sans-serif`;
+    const px = font(ctx, canvas);
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.fillStyle = "#bbb";
     if (!this.terms) {

@@ -3,6 +3,7 @@
 // object with its spatially varying steps. Each renders on its panel's WebGL context into
 // a float target, read back and shown on a 2D canvas (so a panel needs one context only).
 import { formatG } from "./header.js";
+import { font } from "./plotscale.js";
 import { LobeView } from "./lobe3d.js";
 import { SHView } from "./sh.js";
 import { TermsView } from "./terms.js";
@@ -98,13 +99,6 @@ export function objectProgram(source, model) {
     // Replaced, not removed: the lines keep their numbers for error messages.
     if (index >= 0) source.lines[index] = `// ${name}: a constant of this program (its preamble)`;
   }
-}
-
-/** Axes text for an image plot: a small font in canvas pixels. */
-function font(ctx, canvas, px = 12) {
-  const size = Math.round((px * canvas.width) / (canvas.clientWidth || canvas.width));
-  ctx.font = `${size}px system-ui, sans-serif`;
-  return size;
 }
 
 /** f_r over (θh, θd) at the page's φd. */
