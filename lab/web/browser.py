@@ -15,6 +15,7 @@ CHROMIUM_FLAGS = [
     "--disable-component-update",
     "--disable-sync",
     "--no-first-run",
+    "--disable-features=WebUIOmniboxPopup,PreloadTopChromeWebUI",
 ]
 
 

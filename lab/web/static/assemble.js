@@ -296,3 +296,46 @@ export function translateLog(log, source) {
   }
   return errors;
 }
+
+// -- compiling on a WebGL2 context ---------------------------------------------------------
+/** Queues the compile and link of a program; finishProgram() waits for it. Queued programs
+ * compile in the GPU process while the page goes on (SwiftShader, Chromium without a GPU,
+ * takes tens of milliseconds for each). */
+export function startProgram(gl, vertexText, fragmentText) {
+  const shader = (type, text) => {
+    const s = gl.createShader(type);
+    gl.shaderSource(s, text);
+    gl.compileShader(s);
+    return s;
+  };
+  const vs = shader(gl.VERTEX_SHADER, vertexText);
+  const fs = shader(gl.FRAGMENT_SHADER, fragmentText);
+  const program = gl.createProgram();
+  gl.attachShader(program, vs);
+  gl.attachShader(program, fs);
+  gl.linkProgram(program);
+  return { gl, program, vs, fs };
+}
+
+/** The linked program of startProgram() with its active uniforms ({program, uniforms,
+ * types}), or null where it did not link (`logs` then gets the shaders' and the link's logs). */
+export function finishProgram({ gl, program, vs, fs }, logs = {}) {
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
+    Object.assign(logs, { vertex: gl.getShaderInfoLog(vs) || "", fragment: gl.getShaderInfoLog(fs) || "",
+      link: gl.getProgramInfoLog(program) || "" });
+    gl.deleteProgram(program);
+    return null;
+  }
+  gl.deleteShader(vs);
+  gl.deleteShader(fs);
+  const uniforms = {};
+  const types = {};
+  const count = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
+  for (let i = 0; i < count; i++) {
+    const info = gl.getActiveUniform(program, i);
+    const name = info.name.replace(/\[0\]$/, "");
+    uniforms[name] = gl.getUniformLocation(program, info.name);
+    types[name] = info.type;
+  }
+  return { program, uniforms, types };
+}

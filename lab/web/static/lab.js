@@ -3,7 +3,7 @@
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { direction, planeOfIncidence } from "./geometry.js";
 import { SLIDER_STEPS, parseRgb, parseValue, sliderToValue, valueToSlider } from "./values.js";
-import { assembleFragment, translateLog, vertexSource } from "./assemble.js";
+import { assembleFragment, finishProgram, startProgram, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
@@ -137,37 +137,20 @@ class CompileFailure extends Error {
   }
 }
 
-function compile(gl, fragmentText, source) {
-  const shader = (type, text) => {
-    const s = gl.createShader(type);
-    gl.shaderSource(s, text);
-    gl.compileShader(s);
-    return s;
-  };
-  const vs = shader(gl.VERTEX_SHADER, vertexSource("300es"));
-  const fs = shader(gl.FRAGMENT_SHADER, fragmentText);
-  const program = gl.createProgram();
-  gl.attachShader(program, vs);
-  gl.attachShader(program, fs);
-  gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
-    const log = (gl.getShaderInfoLog(fs) || "") + (gl.getProgramInfoLog(program) || "");
-    gl.deleteProgram(program);
+/** A model's program from its assembled fragment source (throws CompileFailure). */
+function finishModelProgram(pending, source) {
+  const logs = {};
+  const compiled = finishProgram(pending, logs);
+  if (!compiled) {
+    const log = logs.fragment + logs.link;
     throw new CompileFailure(source ? translateLog(log, source) : [], log);
   }
-  gl.deleteShader(vs);
-  gl.deleteShader(fs);
-  const uniforms = {};
-  const types = {};
-  const count = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
-  for (let i = 0; i < count; i++) {
-    const info = gl.getActiveUniform(program, i);
-    const name = info.name.replace(/\[0\]$/, "");
-    uniforms[name] = gl.getUniformLocation(program, info.name);
-    types[name] = info.type;
-  }
   // Guarded loops of the model (unknown: null); with none, no loop can be stopped.
-  return { program, uniforms, types, loops: source ? (source.loops ?? null) : 0 };
+  return { ...compiled, loops: source ? (source.loops ?? null) : 0 };
+}
+
+function compile(gl, fragmentText, source) {
+  return finishModelProgram(startProgram(gl, vertexSource("300es"), fragmentText), source);
 }
 
 /** Sets a uniform the program uses (others the driver dropped are skipped), by its type. */
@@ -466,7 +449,7 @@ class Panel {
 
   /** The compiled program of `view`; `transform(source, model)` may edit the assembled
    * source first (the object view's spatially varying parameters). */
-  program(view, preamble = null, transform = null) {
+  program(view, preamble = null, transform = null, { start = false } = {}) {
     const enums = Object.fromEntries(this.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, this.values[p.name]]));
     // The light count is a constant of the lit views, as on the desktop.
     if (preamble === null) preamble = view === "sphere" ? `const int LIGHT_COUNT = ${lab.lights.length};` : "";
@@ -476,9 +459,31 @@ class Panel {
       const assemble = this.model.assemble ?? assembleFragment;
       const source = assemble(this.model, view, lab.files, { target: "300es", preamble, enums, constants: C });
       if (transform) transform(source, this.model);
-      this.programs.set(key, compile(this.gl, source.text, source));
+      this.programs.set(key, { pending: startProgram(this.gl, vertexSource("300es"), source.text), source });
+    }
+    if (start) return null;
+    const entry = this.programs.get(key);
+    if (entry.pending) {
+      this.programs.delete(key); // a program that does not compile is tried again next time
+      this.programs.set(key, finishModelProgram(entry.pending, entry.source));
     }
     return this.programs.get(key);
+  }
+
+  /** Queues the compiles of every program this frame draws, so that the GPU process works
+   * on them together while the page goes on (views compile theirs in warm()). Errors wait
+   * for the draw that needs the program: it reports them. */
+  warmPrograms(views) {
+    const tries = views ? views.map((view) => () => view.warm?.()) : [() => this.program("sphere", null, null, { start: true }),
+      () => this.program("probe", null, null, { start: true })];
+    for (const attempt of tries) {
+      try {
+        attempt();
+      } catch (err) {
+        if (!(err instanceof CompileFailure || err instanceof ModelError)) throw err;
+      }
+    }
+    this.gl.flush();
   }
 
   /** A float RGBA texture (width x height, from `data()`) kept in `slot` while `key` stays
@@ -506,11 +511,12 @@ class Panel {
   }
 
   /** Queues the draw of run() without waiting for it: a pass for collect() to read. */
-  draw(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [] } = {}) {
+  draw(view, width, height, uniforms, { preamble = "", transform = null, suffix = "", textures = [], tag = view } = {}) {
     const gl = this.gl;
     const compiled = this.program(view, preamble, transform);
     // The target first: making one binds its textures, which must not replace the inputs.
-    const key = `${width}x${height}`;
+    // One per caller (tag) and size: passes queued together are read back after each other.
+    const key = `${tag}|${width}x${height}`;
     if (!this.targets.has(key)) this.targets.set(key, floatTarget(gl, width, height, true));
     const target = this.targets.get(key);
     gl.useProgram(compiled.program);
@@ -556,35 +562,34 @@ class Panel {
     if (!this.gl || !this.model) return;
     const gl = this.gl;
     try {
+      this.warmPrograms();
       this.renderSphere(gl);
-      this.renderPolar(gl);
-      // A view in three steps (submit: queue its GPU work; collect: wait for it; process: its
-      // picture, in JS) lets the previous view's JS run while the GPU works on this one
-      // (SwiftShader compiles a program at its first draw). The order pairs heavy JS with
-      // heavy GPU work; the page shows the views in lab.views' order.
-      let process = null;
-      try {
-        const order = [...FRAME_ORDER.filter((n) => lab.views.includes(n)), ...lab.views.filter((n) => !FRAME_ORDER.includes(n))];
-        for (const name of order) {
-          const view = this.extra[name];
-          // Off screen a view waits: it draws when scrolled into sight (watchVisibility).
-          if (view) view.stale = view.offscreen === true;
-          if (!view || view.stale) continue;
-          if (!view.submit) {
-            process?.();
-            process = null;
-            view.render();
-            continue;
-          }
-          view.submit();
-          process?.();
-          process = null;
-          view.collect();
-          process = () => view.process();
-        }
-      } finally {
-        process?.();
+      // Every view's GPU work is queued before the first read back (SwiftShader compiles
+      // a program at its first draw: the GPU process does that for the next view while the
+      // page draws the last one's picture). A view in rounds: submit queues its GPU work,
+      // collect waits for it (and may queue a second round: the 3D lobe's mesh, once the
+      // scale is known), process makes its picture in JS; a view with a second round is
+      // processed last. The page shows the views in lab.views' order.
+      const order = [...FRAME_ORDER.filter((n) => lab.views.includes(n)), ...lab.views.filter((n) => !FRAME_ORDER.includes(n))];
+      const views = [];
+      for (const name of order) {
+        const view = this.extra[name];
+        // Off screen a view waits: it draws when scrolled into sight (watchVisibility).
+        if (view) view.stale = view.offscreen === true;
+        if (view && !view.stale) views.push(view);
       }
+      const polar = this.submitPolar(gl);
+      this.warmPrograms(views);
+      for (const view of views) view.submit?.();
+      gl.flush();
+      this.collectPolar(gl, polar);
+      const late = [];
+      for (const view of views) {
+        if (!view.submit) view.render();
+        else if (view.collect() === "later") late.push(view);
+        else view.process();
+      }
+      for (const view of late) view.process();
       this.showError("");
     } catch (err) {
       if (!(err instanceof CompileFailure || err instanceof ModelError)) throw err;
@@ -634,39 +639,28 @@ class Panel {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
   }
 
-  /** The lobe in the plane of incidence, drawn from probe values read back as floats. */
-  renderPolar(gl) {
+  /** Queues the lobe in the plane of incidence (probe values, read back as floats). */
+  submitPolar(gl) {
     const { theta, phi } = lab.light;
-    const L = new Float32Array(4 * POLAR_STEPS);
-    const V = new Float32Array(4 * POLAR_STEPS);
-    const Ld = direction(theta, phi);
-    // The plane of the plot: the plane of incidence turned by phi_o about the normal.
-    const plane = planeOfIncidence(phi + lab.phiO).V;
-    for (let i = 0; i < POLAR_STEPS; i++) {
-      L.set(Ld, 4 * i);
-      V.set(plane[i], 4 * i);
-    }
-    const compiled = this.program("probe");
-    const textures = [floatTexture(gl, POLAR_STEPS, L), floatTexture(gl, POLAR_STEPS, V)];
-    gl.useProgram(compiled.program);
-    gl.bindVertexArray(this.vao);
-    this.setParams(gl, compiled);
-    textures.forEach((t, unit) => {
-      gl.activeTexture(gl.TEXTURE0 + unit);
-      gl.bindTexture(gl.TEXTURE_2D, t);
-    });
-    gl.uniform1i(compiled.uniforms.u_L, 0);
-    gl.uniform1i(compiled.uniforms.u_V, 1);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, this.probeTarget.fbo);
-    gl.viewport(0, 0, POLAR_STEPS, 1);
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
-    const out = new Float32Array(4 * POLAR_STEPS);
-    gl.readPixels(0, 0, POLAR_STEPS, 1, gl.RGBA, gl.FLOAT, out);
-    this.showLoop(loopStop(gl, this.probeTarget, compiled));
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    textures.forEach((t) => gl.deleteTexture(t));
-    this.lobe = out;
+    const key = `${theta},${phi},${lab.phiO}`;
+    const directions = (which) => () => {
+      const Ld = direction(theta, phi);
+      // The plane of the plot: the plane of incidence turned by phi_o about the normal.
+      const plane = planeOfIncidence(phi + lab.phiO).V;
+      const out = new Float32Array(4 * POLAR_STEPS);
+      for (let i = 0; i < POLAR_STEPS; i++) out.set(which === "L" ? Ld : plane[i], 4 * i);
+      return out;
+    };
+    const textures = [this.heldTexture("polar L", key, POLAR_STEPS, 1, directions("L")),
+      this.heldTexture("polar V", key, POLAR_STEPS, 1, directions("V"))];
+    return this.draw("probe", POLAR_STEPS, 1, { u_L: 0, u_V: 1 }, { textures, tag: "polar" });
+  }
+
+  collectPolar(gl, pass) {
+    this.lobe = this.collect(pass);
+    this.showLoop(this.lastLoop);
     // The spike leaves the plot's plane when it is turned.
+    const { theta, phi } = lab.light;
     this.spike = this.model.delta && lab.phiO === 0 ? this.deltaReflectance(gl, theta, phi) : null;
   }
 
@@ -1627,9 +1621,10 @@ async function openFile(file) {
   return name;
 }
 
-/** The files opened in this browser on earlier visits, before the address is read. */
-async function restoreFiles() {
-  for (const { name, file } of await keptFiles()) {
+/** The files opened in this browser on earlier visits (keptFiles()), before the address is
+ * read. */
+async function restoreFiles(keptList) {
+  for (const { name, file } of keptList) {
     const opened = await openModelFile(file, lab);
     originals[opened] = lab.models[opened]?.text ?? null;
     if (opened !== name) lab.notes.push(`${file.name}: kept as ${name}, now opens as ${opened}`);
@@ -1702,8 +1697,9 @@ function renderNow() {
 }
 
 async function main() {
-  await load();
-  if (!embedded()) await restoreFiles();
+  // The kept files are looked up while the manifest loads.
+  const [, keptList] = await Promise.all([load(), embedded() ? [] : keptFiles()]);
+  await restoreFiles(keptList);
   const panels = readHash();
   buildPage();
   showToolbar();

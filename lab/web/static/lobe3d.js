@@ -3,7 +3,7 @@
 // lab/views/lobe3d.py draws them); every panel on one shared scale; drag (or touch) to
 // orbit, wheel to zoom. The marks (horizon, N, L, R, a delta's spike) are drawn on top.
 import { ModelError, formatG } from "./header.js";
-import { VERSION_LINES, assembleFragment, translateLog } from "./assemble.js";
+import { VERSION_LINES, assembleFragment, finishProgram, startProgram, translateLog } from "./assemble.js";
 
 export const LOBE_GRID = [61, 121]; // vertices in theta_o and phi_o (lab/views/lobe3d.py)
 export const LOBE_FAST_GRID = [25, 49]; // while a slider moves
@@ -63,32 +63,14 @@ export function project(camera, p, width, height) {
 const hexRgb = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16) / 255);
 const css = (rgb, alpha = 1) => `rgba(${rgb.map((c) => Math.round(255 * c)).join(",")},${alpha})`;
 
-function compileProgram(gl, vertex, fragment, source) {
-  const stage = (type, text) => {
-    const shader = gl.createShader(type);
-    gl.shaderSource(shader, text);
-    gl.compileShader(shader);
-    return shader;
-  };
-  const vs = stage(gl.VERTEX_SHADER, vertex);
-  const fs = stage(gl.FRAGMENT_SHADER, fragment);
-  const program = gl.createProgram();
-  gl.attachShader(program, vs);
-  gl.attachShader(program, fs);
-  gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
-    const log = (gl.getShaderInfoLog(vs) || "") + (gl.getShaderInfoLog(fs) || "") + (gl.getProgramInfoLog(program) || "");
-    const errors = translateLog(gl.getShaderInfoLog(vs) || "", source);
-    const text = errors.length ? errors.map((e) => `${e.file}:${e.line}: ${e.message}`).join("\n") : log;
-    throw new ModelError(`the shader does not compile in the 3D lobe (its BRDF runs in the vertex stage):\n${text}`);
-  }
-  const uniforms = {};
-  const count = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
-  for (let i = 0; i < count; i++) {
-    const info = gl.getActiveUniform(program, i);
-    uniforms[info.name] = gl.getUniformLocation(program, info.name);
-  }
-  return { program, uniforms };
+/** The lobe program queued by startProgram(), linked (throws ModelError where it does not). */
+function finishLobeProgram(pending, source) {
+  const logs = {};
+  const compiled = finishProgram(pending, logs);
+  if (compiled) return compiled;
+  const errors = translateLog(logs.vertex, source);
+  const text = errors.length ? errors.map((e) => `${e.file}:${e.line}: ${e.message}`).join("\n") : logs.vertex + logs.fragment + logs.link;
+  throw new ModelError(`the shader does not compile in the 3D lobe (its BRDF runs in the vertex stage):\n${text}`);
 }
 
 /** Another panel's peak; [0, 0] where its model cannot be drawn (its panel says why). */
@@ -154,10 +136,21 @@ export class LobeView {
    * at the vertices come from the probe program (the polar plot's, already compiled: one
    * program less to compile at the first draw) at the directions of lobeGridAngles. */
   peak() {
-    const { lab, C } = this.env;
+    return this.peakCache?.model === this.panel.model && this.peakCache.key === this.peakKey()
+      ? this.peakCache.value : this.readPeak(this.queuePeak());
+  }
+
+  peakKey() {
+    const { lab } = this.env;
     const light = lab.lights[0];
-    const key = JSON.stringify([this.panel.values, light.theta, light.phi, lab.cosWeighted]);
-    if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return this.peakCache.value;
+    return JSON.stringify([this.panel.values, light.theta, light.phi, lab.cosWeighted]);
+  }
+
+  /** Queues the probe of the full grid for peak() (null while the cached peak holds). */
+  queuePeak() {
+    const key = this.peakKey();
+    if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return null;
+    const light = this.env.lab.lights[0];
     const [rows, cols] = LOBE_GRID;
     const n = rows * cols;
     // The grid's directions change with the light only (not while a parameter moves).
@@ -176,10 +169,20 @@ export class LobeView {
       }
       this.directions = { key: lightKey, angles, L, V };
     }
-    const { angles, L, V } = this.directions;
+    const { L, V } = this.directions;
     const textures = [this.panel.heldTexture("lobe L", lightKey, cols, rows, () => L),
       this.panel.heldTexture("lobe V", lightKey, cols, rows, () => V)];
-    const f = this.panel.run("probe", cols, rows, { u_L: 0, u_V: 1 }, { textures });
+    return { key, pass: this.panel.draw("probe", cols, rows, { u_L: 0, u_V: 1 }, { textures, tag: "lobe peak" }) };
+  }
+
+  /** [largest value, delta spike] from the probe queued by queuePeak(), cached. */
+  readPeak(queued) {
+    if (!queued) return this.peakCache.value;
+    const { lab, C } = this.env;
+    const light = lab.lights[0];
+    const f = this.panel.collect(queued.pass);
+    const { angles, V } = this.directions;
+    const n = LOBE_GRID[0] * LOBE_GRID[1];
     // As lobe_mesh_peak.glsl: the luminance (times cos θo when asked), and the largest
     // value away from grazing, where some models diverge.
     const values = new Float32Array(n);
@@ -197,7 +200,7 @@ export class LobeView {
       spike = C.LUMA[0] * rgb[0] + C.LUMA[1] * rgb[1] + C.LUMA[2] * rgb[2];
       if (!Number.isFinite(spike)) spike = 0;
     }
-    this.peakCache = { model: this.panel.model, key, value: [peak, spike], values };
+    this.peakCache = { model: this.panel.model, key: queued.key, value: [peak, spike], values };
     return this.peakCache.value;
   }
 
@@ -208,8 +211,9 @@ export class LobeView {
       u_cos: lab.cosWeighted };
   }
 
-  /** The model's lobe program: the assembled model + lobe_mesh.glsl as the vertex stage. */
-  program() {
+  /** The model's lobe program: the assembled model + lobe_mesh.glsl as the vertex stage
+   * (with `start`, only queued: see Panel.warmPrograms). */
+  program({ start = false } = {}) {
     const { panel } = this;
     const { lab, C } = this.env;
     const enums = Object.fromEntries(panel.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, panel.values[p.name]]));
@@ -219,9 +223,19 @@ export class LobeView {
       const source = assemble(panel.model, "lobe_mesh", lab.files, { target: "300es",
         preamble: lab.files["views/lobe_mesh_common.glsl"], enums, constants: C });
       const fragment = `${VERSION_LINES["300es"].join("\n")}\n${lab.files["views/lobe_mesh_shade.glsl"]}`;
-      panel.programs.set(key, compileProgram(panel.gl, source.text, fragment, source));
+      panel.programs.set(key, { pending: startProgram(panel.gl, source.text, fragment), source });
+    }
+    if (start) return null;
+    const entry = panel.programs.get(key);
+    if (entry.pending) {
+      panel.programs.delete(key); // one that does not compile is tried again next time
+      panel.programs.set(key, finishLobeProgram(entry.pending, entry.source));
     }
     return panel.programs.get(key);
+  }
+
+  warm() {
+    this.program({ start: true });
   }
 
   /** Two triangles per grid cell (lab/views/lobe3d.py's _lobe_indices). */
@@ -273,16 +287,33 @@ export class LobeView {
     this.process();
   }
 
-  /** The scale (every panel's peak: small probes, read at once), then the mesh's draw,
-   * queued. */
+  /** Queues the probe for this panel's peak (unless it is cached), and a first program's
+   * draw on one pixel: SwiftShader compiles the program then, not after the scale is read. */
   submit() {
+    this.queued = this.queuePeak();
+    const compiled = this.program();
+    if (this.drawn !== compiled) this.drawMesh(1, { pixel: true });
+    this.drawn = compiled;
+  }
+
+  /** The scale (every panel's peak: small probes), then the mesh's draw, queued: a second
+   * round, read back by process(). */
+  collect() {
     const { lab } = this.env;
-    const gl = this.panel.gl;
     // One scale for every panel: the largest value (or spike) of all of them.
-    const peaks = lab.panels.map((p) => (p === this.panel ? this.peak() : otherPeak(p)));
+    const peaks = lab.panels.map((p) => (p === this.panel ? this.readPeak(this.queued) : otherPeak(p)));
     const shared = Math.max(...peaks.flat(), 0);
     this.scale = Number.isFinite(shared) && shared > 0 ? shared : 1e-12;
     this.spike = peaks[lab.panels.indexOf(this.panel)]?.[1] ?? 0;
+    this.pass = this.drawMesh(this.scale);
+    return "later";
+  }
+
+  /** Queues the lobe's mesh at `scale` (radius 1) into the float target; with `pixel`, on
+   * one pixel only. */
+  drawMesh(scale, { pixel = false } = {}) {
+    const { lab } = this.env;
+    const gl = this.panel.gl;
     const grid = lab.fast ? LOBE_FAST_GRID : LOBE_GRID;
     // While the hand moves, half the resolution (a quarter of the pixels to draw and read).
     const step = lab.fast ? 2 : 1;
@@ -293,6 +324,10 @@ export class LobeView {
     const target = this.target(gl, width, height);
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
     gl.viewport(0, 0, width, height);
+    if (pixel) {
+      gl.enable(gl.SCISSOR_TEST);
+      gl.scissor(0, 0, 1, 1);
+    }
     gl.clearColor(...BACKGROUND, 1);
     gl.clearDepth(1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
@@ -310,7 +345,7 @@ export class LobeView {
       u_perspective: () => gl.uniform1i(u.u_perspective, 1),
       // Clip y flipped (as LobeCamera.uniforms): the first row read back is the top row.
       u_aspect: () => gl.uniform2f(u.u_aspect, short / width, -short / height),
-      u_peak: () => gl.uniform1f(u.u_peak, this.scale),
+      u_peak: () => gl.uniform1f(u.u_peak, scale),
       u_log: () => gl.uniform1i(u.u_log, lab.polarLog ? 1 : 0),
       u_decades: () => gl.uniform1f(u.u_decades, this.env.C.PLOT_DECADES),
       u_cos: () => gl.uniform1i(u.u_cos, lab.cosWeighted ? 1 : 0),
@@ -332,23 +367,21 @@ export class LobeView {
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, null);
     gl.disable(gl.DEPTH_TEST);
     gl.disable(gl.BLEND);
+    gl.disable(gl.SCISSOR_TEST);
     gl.frontFace(gl.CCW);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.bindVertexArray(this.panel.vao);
     gl.flush(); // to the GPU now: it works while the page's JS goes on
-    this.pass = target;
+    return target;
   }
 
-  collect() {
+  process() {
     const gl = this.panel.gl;
     const { fbo, width, height } = this.pass;
     gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
     this.data = new Float32Array(width * height * 4);
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, this.data);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-  }
-
-  process() {
     this.draw();
   }
 

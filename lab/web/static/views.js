@@ -116,6 +116,10 @@ export class SliceView {
     this.process();
   }
 
+  warm() {
+    this.panel.program("slice", null, null, { start: true });
+  }
+
   submit() {
     const { lab } = this.env;
     const n = Math.min(lab.size, lab.fast ? SLICE_FAST : SLICE_MAX);
@@ -181,6 +185,10 @@ export class AlbedoView {
     this.submit();
     this.collect();
     this.process();
+  }
+
+  warm() {
+    this.panel.program("albedo", null, null, { start: true });
   }
 
   submit() {
@@ -319,12 +327,20 @@ export class ObjectView {
       rgb.push(light ? light.rgb : [0, 0, 0]);
     }
     this.size = n;
-    // The shape and the step are constants of the program (one per choice), not uniforms.
-    const preamble = [`const int LIGHT_COUNT = ${lab.lights.length};`,
-      `const int u_shape = ${Math.trunc(lab.shape) || 0};`, `const int u_mode = ${Math.trunc(lab.mode) || 0};`].join("\n");
     this.pass = this.panel.draw("object", n, n, {
       u_resolution: [n, n], u_light_dir: dirs, u_light_rgb: rgb, u_ambient: lab.ambient, u_yaw: lab.yaw, u_pitch: lab.pitch,
-    }, { preamble, transform: objectProgram, suffix: "_base" });
+    }, { preamble: this.preamble(), transform: objectProgram, suffix: "_base" });
+  }
+
+  /** The shape and the step are constants of the program (one per choice), not uniforms. */
+  preamble() {
+    const { lab } = this.env;
+    return [`const int LIGHT_COUNT = ${lab.lights.length};`,
+      `const int u_shape = ${Math.trunc(lab.shape) || 0};`, `const int u_mode = ${Math.trunc(lab.mode) || 0};`].join("\n");
+  }
+
+  warm() {
+    this.panel.program("object", this.preamble(), objectProgram, { start: true });
   }
 
   collect() {
