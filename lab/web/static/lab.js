@@ -19,9 +19,9 @@ const MAX_PANELS = 6;
 const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
 const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
 const SPHERE_FAST_MIN = 384; // spheres this large draw at half resolution while a slider moves
-// The order the views draw in within a frame (Panel.render): the JS of each overlaps the GPU
-// work of the next (sh's series with the lobe mesh's draw, the lobe's picture with the slice,
-// the slice's with the albedo, the albedo's with the object).
+// The order the views queue their GPU work in, and make their pictures in, within a frame
+// (Panel.render): cheap programs first, so that each picture's JS overlaps the GPU's work
+// on the views after it (the 3D lobe's picture comes last: its mesh is a second round).
 const FRAME_ORDER = ["terms", "sh", "lobe3d", "slice", "albedo", "object"];
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
@@ -470,9 +470,9 @@ class Panel {
     return this.programs.get(key);
   }
 
-  /** Queues the compiles of every program this frame draws, so that the GPU process works
-   * on them together while the page goes on (views compile theirs in warm()). Errors wait
-   * for the draw that needs the program: it reports them. */
+  /** Queues the compiles of the programs `views` draw (their warm(); none given: the
+   * sphere's and the probe's), so that the GPU process works on them while the page goes
+   * on. Errors wait for the draw that needs the program: it reports them. */
   warmPrograms(views) {
     const tries = views ? views.map((view) => () => view.warm?.()) : [() => this.program("sphere", null, null, { start: true }),
       () => this.program("probe", null, null, { start: true })];
