@@ -55,6 +55,10 @@ export async function keepFile(name, file) {
 /** The files kept earlier, as File objects with their model names: [{name, file}]. */
 export async function keptFiles() {
   try {
+    // Nothing kept yet: the store is made by the first file kept, not by every visit (making
+    // it delays the first picture by about 10 ms). Browsers that cannot list stores open it.
+    const stores = await globalThis.indexedDB?.databases?.();
+    if (stores && !stores.some((s) => s.name === DB_NAME)) return [];
     const records = await request((await files("readonly")).getAll());
     return records.map((r) => ({ name: r.name, file: new File([r.data], r.fileName) }));
   } catch (err) {
