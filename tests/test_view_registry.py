@@ -95,3 +95,21 @@ def test_a_new_view_gets_a_dock(extra_view, qtbot, app_renderer):
     file_menu = win.menuBar().actions()[0].menu()
     export = next(a.menu() for a in file_menu.actions() if a.text() == "Export view as PNG")
     assert "Retroreflection" in [a.text() for a in export.actions()]
+
+
+def test_each_view_redraws_on_the_settings_it_names(window):
+    """A widget's settings_used are settings of the lab, and each of them moves its inputs():
+    a change of one redraws the view (and a misspelt name fails here, not silently)."""
+    settings = window.lab.settings.values  # set directly: no signal, no redraw
+    named = 0
+    for view in window.views:
+        for key in view.settings_used:
+            assert key in settings, f"{view.name} names an unknown setting {key}"
+            before, old = view.inputs(), settings[key]
+            settings[key] = (not old) if isinstance(old, bool) else old + 1
+            try:
+                assert view.inputs() != before, f"{view.name} does not redraw when {key} changes"
+            finally:
+                settings[key] = old
+            named += 1
+    assert named >= 20  # every view with settings named them

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from PyQt6.QtWidgets import QLabel
 
-from lab.app.views.base import View
+from lab.app.views.base import View, look_key
 
 from .retro import retro_values
 
@@ -18,10 +18,11 @@ class RetroView(View):
         self.label = QLabel("")
         self.layout_.addWidget(self.label)
 
-    def inputs(self) -> tuple:
+    settings_used = ("phi_i", "retro_gain")  # it redraws when one of these changes
+
+    def shown_models(self) -> tuple:
         state = self.lab.selected
-        key = (id(state), tuple(sorted(state.values.items()))) if state else ()
-        return (*key, self.lab.settings["phi_i"], self.lab.settings["retro_gain"])
+        return (look_key(state),) if state else ()
 
     def draw(self, fast: bool) -> bool:
         state = self.lab.selected

@@ -9,7 +9,7 @@ import pyqtgraph as pg
 from PyQt6.QtCore import Qt
 
 from lab.app.state import ModelState
-from lab.app.views.base import View, finite_max, look_key, opaque, pen, state_key
+from lab.app.views.base import View, finite_max, opaque, pen, state_key
 from lab.app.widgets import LiveText
 
 
@@ -60,9 +60,8 @@ class AlbedoView(View):
             self.top = wanted
             self.plot.setRange(xRange=(0, 90), yRange=(0, wanted), padding=0.02)
 
-    def inputs(self) -> tuple:
-        # Albedo is integrated over every outgoing direction: it does not depend on theta_i.
-        return (tuple(look_key(m) for m in self.lab.visible_models()), self.lab.settings["phi_i"])
+    # Albedo is integrated over every outgoing direction: it does not depend on theta_i.
+    settings_used = ("phi_i",)
 
     def draw(self, fast: bool) -> bool:
         phi_i = self.lab.settings["phi_i"]

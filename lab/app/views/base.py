@@ -81,7 +81,8 @@ class View(QWidget):
 
     `redraw(fast)` does nothing when the view's `inputs()` are those it last drew (a light
     change leaves the slice alone, a model's change leaves views of other models alone).
-    Subclasses implement `inputs()` and `draw(fast) -> needs a finer pass`.
+    Subclasses name their `settings_used` (and `own_inputs()`) and implement
+    `draw(fast) -> needs a finer pass`.
     """
 
     title = "view"
@@ -105,9 +106,22 @@ class View(QWidget):
     def is_shown(self) -> bool:
         return self.isVisible() and not self.visibleRegion().isEmpty()
 
+    # The lab's settings the picture depends on; inputs() adds the models it shows and
+    # own_inputs() (the widget's size, its own controls).
+    settings_used: tuple[str, ...] = ()
+
     def inputs(self) -> tuple:
         """Everything the view's picture depends on."""
-        raise NotImplementedError
+        s = self.lab.settings
+        return (self.shown_models(), *(s[k] for k in self.settings_used), *self.own_inputs())
+
+    def shown_models(self) -> tuple:
+        """The models drawn, as look_key()s (every visible model unless a view says otherwise)."""
+        return tuple(look_key(m) for m in self.lab.visible_models())
+
+    def own_inputs(self) -> tuple:
+        """What else the picture depends on: the widget's size, the view's own controls."""
+        return ()
 
     def draw(self, fast: bool) -> bool:
         raise NotImplementedError

@@ -8,7 +8,7 @@ from PyQt6.QtGui import QColor, QImage, QPainter
 from PyQt6.QtWidgets import QCheckBox, QWidget
 
 from lab.app.state import ModelState
-from lab.app.views.base import BACKGROUND, View, look_key, opaque, state_key
+from lab.app.views.base import BACKGROUND, View, opaque, state_key
 from lab.app.widgets import LiveText, SettingCheck
 from lab.glsl import ShaderCompileError
 from lab.models import ModelError
@@ -115,20 +115,18 @@ class LobeView(View):
             self.GRIDS[-1],
         )
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
-        return (
-            tuple(look_key(m) for m in self.lab.visible_models()),
-            s["theta_i"],
-            s["phi_i"],
-            s["polar_cos"],
-            s["polar_log"],
-            s["lobe_yaw"],
-            s["lobe_pitch"],
-            s["lobe_zoom"],
-            self.wire.isChecked(),
-            self.size_(),
-        )
+    settings_used = (
+        "theta_i",
+        "phi_i",
+        "polar_cos",
+        "polar_log",
+        "lobe_yaw",
+        "lobe_pitch",
+        "lobe_zoom",
+    )
+
+    def own_inputs(self) -> tuple:
+        return (self.wire.isChecked(), self.size_())
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings

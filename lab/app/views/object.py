@@ -65,28 +65,25 @@ class ObjectView(View):
             min(self.canvas.width(), self.canvas.height() - self.canvas.caption_height(), 512), 32
         )
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
+    settings_used = (
+        "theta_i",
+        "phi_i",
+        "lights",
+        "ambient",
+        "shape",
+        "mode",
+        "yaw",
+        "pitch",
+        "exposure",
+        "gamma",
+    )
+
+    def shown_models(self) -> tuple:
         state = self.subject()
-        return (
-            look_key(state) if state else None,
-            self.side(),
-            *(
-                s[k]
-                for k in (
-                    "theta_i",
-                    "phi_i",
-                    "lights",
-                    "ambient",
-                    "shape",
-                    "mode",
-                    "yaw",
-                    "pitch",
-                    "exposure",
-                    "gamma",
-                )
-            ),
-        )
+        return (look_key(state),) if state else ()
+
+    def own_inputs(self) -> tuple:
+        return (self.side(),)
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings

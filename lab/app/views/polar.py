@@ -16,7 +16,7 @@ from PyQt6.QtWidgets import QBoxLayout, QLabel, QPushButton
 
 from lab import constants, plotscale
 from lab.app.state import ModelState
-from lab.app.views.base import LUMA, QWIDGETSIZE_MAX, View, look_key, opaque, pen, state_key
+from lab.app.views.base import LUMA, QWIDGETSIZE_MAX, View, opaque, pen, state_key
 from lab.app.widgets import SettingCheck
 
 
@@ -124,18 +124,11 @@ class PolarView(View):
                 ring.setData(np.sin(angle), np.cos(angle))  # the rim
                 text.setText("")
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
-        return (
-            tuple(look_key(m) for m in self.lab.visible_models()),
-            s["theta_i"],
-            s["phi_i"],
-            s["polar_cos"],
-            s["polar_log"],
-            self.plot.width(),  # which ring labels fit
-            self.plot.height(),
-            self.font().pointSizeF(),
-        )
+    settings_used = ("theta_i", "phi_i", "polar_cos", "polar_log")
+
+    def own_inputs(self) -> tuple:
+        # The plot's size and font: which ring labels fit.
+        return (self.plot.width(), self.plot.height(), self.font().pointSizeF())
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings

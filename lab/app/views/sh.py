@@ -190,10 +190,14 @@ class SHView(View):
         """Relative error by order 0..MAX_ORDER of the shown lobe (empty without one)."""
         return self.data.errors if self.data is not None else np.zeros(0)
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
+    settings_used = ("theta_i", "phi_i")
+
+    def shown_models(self) -> tuple:
         state = self.subject()
-        return (look_key(state) if state else None, s["theta_i"], s["phi_i"], self.order)
+        return (look_key(state),) if state else ()
+
+    def own_inputs(self) -> tuple:
+        return (self.order,)
 
     def plane(self, state: ModelState, theta_i: float, phi_i: float) -> np.ndarray:
         """The lobe in the plane of incidence alone: the cheap part, drawn while sliding."""

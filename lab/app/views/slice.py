@@ -8,7 +8,7 @@ from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
 from PyQt6.QtWidgets import QWidget
 
 from lab.app.state import ModelState
-from lab.app.views.base import BACKGROUND, View, look_key, opaque, state_key
+from lab.app.views.base import BACKGROUND, View, opaque, state_key
 from lab.app.widgets import SettingSlider
 
 
@@ -170,15 +170,10 @@ class SliceView(View):
         rects = self.canvas.plot_rects(len(self.lab.visible_models()))
         return min(max(rects[0].width(), 32), 256)
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
-        return (
-            tuple(look_key(m) for m in self.lab.visible_models()),
-            s["phi_d"],
-            s["exposure"],
-            s["gamma"],
-            self.side(),
-        )
+    settings_used = ("phi_d", "exposure", "gamma")
+
+    def own_inputs(self) -> tuple:
+        return (self.side(),)
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings

@@ -8,7 +8,7 @@ import numpy as np
 from PyQt6.QtWidgets import QLabel
 
 from lab.app.state import ModelState
-from lab.app.views.base import ImageRow, View, look_key, state_key
+from lab.app.views.base import ImageRow, View, state_key
 from lab.app.widgets import SettingCheck, SettingSlider
 from lab.nonfinite import sphere_report
 from lab.render import direction
@@ -54,17 +54,10 @@ class SphereView(View):
         )
         return min(side, 512)
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
-        return (
-            tuple(look_key(m) for m in self.lab.visible_models()),
-            s["theta_i"],
-            s["phi_i"],
-            s["multiply_cos"],
-            s["exposure"],
-            s["gamma"],
-            self.side(),
-        )
+    settings_used = ("theta_i", "phi_i", "multiply_cos", "exposure", "gamma")
+
+    def own_inputs(self) -> tuple:
+        return (self.side(),)
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings

@@ -8,7 +8,7 @@ import numpy as np
 import pyqtgraph as pg
 from PyQt6.QtCore import Qt
 
-from lab.app.views.base import LUMA, View, look_key, pen, state_key
+from lab.app.views.base import LUMA, View, pen, state_key
 from lab.app.widgets import LiveText
 from lab.views.terms import has_terms, microfacet_terms
 
@@ -45,9 +45,7 @@ class TermsView(View):
         self.shown: list = []  # (label, Terms) drawn, for tests
         self.setMinimumWidth(300)
 
-    def inputs(self) -> tuple:
-        s = self.lab.settings
-        return (tuple(look_key(m) for m in self.lab.visible_models()), s["theta_i"], s["phi_i"])
+    settings_used = ("theta_i", "phi_i")
 
     def draw(self, fast: bool) -> bool:
         s = self.lab.settings

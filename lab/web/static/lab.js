@@ -1213,15 +1213,20 @@ function removePanel(panel) {
   scheduleRender();
 }
 
-// -- URL hash: model=NAME&PARAM=VALUE...&model=NAME2...&light=THETA,PHI[,R,G,B]...&ambient=R,G,B
-function readHash() {
-  // An address holds the whole state: what it leaves out has its default.
+/** The page's lights and settings back to their defaults (the models are the panels'). */
+function defaultSettings() {
   lab.lights = [{ ...DEFAULT_LIGHT, rgb: [...DEFAULT_LIGHT.rgb] }];
   lab.ambient = [0, 0, 0];
   lab.exposure = 0;
   lab.cosWeighted = false;
   lab.active = 0;
   Object.assign(lab, SETTINGS);
+}
+
+// -- URL hash: model=NAME&PARAM=VALUE...&model=NAME2...&light=THETA,PHI[,R,G,B]...&ambient=R,G,B
+function readHash() {
+  // An address holds the whole state: what it leaves out has its default.
+  defaultSettings();
   lab.views = [];
   lab.show = null;
   lab.plot = "polar";
@@ -1415,12 +1420,7 @@ function applyHash(hash = location.hash.slice(1), extraNotes = []) {
 
 /** Every parameter back to its default, one white light, no ambient; the models stay. */
 function reset() {
-  lab.lights = [{ ...DEFAULT_LIGHT, rgb: [...DEFAULT_LIGHT.rgb] }];
-  lab.ambient = [0, 0, 0];
-  lab.exposure = 0;
-  lab.cosWeighted = false;
-  lab.active = 0;
-  Object.assign(lab, SETTINGS);
+  defaultSettings();
   for (const panel of lab.panels) panel.setModel(panel.name);
   $("#preset").value = "";
   $("#preset-notes").hidden = true;

@@ -32,3 +32,13 @@ export function font(ctx, canvas, px = 12) {
   ctx.font = `${size}px system-ui, sans-serif`;
   return size;
 }
+
+/** A canvas's 2D context cleared for a new plot, with the axes font (font()) and grey text:
+ * {ctx, px}. */
+export function clearedPlot(canvas) {
+  const ctx = canvas.getContext("2d");
+  const px = font(ctx, canvas);
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  ctx.fillStyle = "#bbb";
+  return { ctx, px };
+}

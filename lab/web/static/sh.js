@@ -4,7 +4,7 @@
 // Left: g and its series at order L in the plane of incidence; right: the relative L2
 // error over the hemisphere against the order.
 import { formatG } from "./header.js";
-import { font } from "./plotscale.js";
+import { clearedPlot } from "./plotscale.js";
 
 export const MAX_ORDER = 16;
 export const GRID = [48, 96]; // Gauss-Legendre nodes in cos θ × uniform φ (sh_view.GRID)
@@ -288,10 +288,7 @@ export class SHView {
   draw() {
     const { lab, C } = this.env;
     const canvas = this.canvas;
-    const ctx = canvas.getContext("2d");
-    const px = font(ctx, canvas);
-    ctx.clearRect(0, 0, canvas.width, canvas.height);
-    ctx.fillStyle = "#bbb";
+    const { ctx, px } = clearedPlot(canvas);
     if (!this.data) {
       ctx.fillText("an ideal mirror has no finite lobe to expand", 4, 2 * px);
       this.note.textContent = "";

@@ -2,7 +2,7 @@
 // G against θo in light 1's plane of incidence, F against θd, from the model's own
 // MICROFACET_TERMS through shaders/views/terms.glsl.
 import { formatG } from "./header.js";
-import { font } from "./plotscale.js";
+import { clearedPlot } from "./plotscale.js";
 
 const TERMS_FUNCTION = /\bvoid\s+MICROFACET_TERMS\s*\(/;
 const ANGLES = Array.from({ length: 91 }, (_, k) => k); // θh for D, θd for F (degrees)
@@ -64,10 +64,7 @@ export class TermsView {
   draw() {
     const { lab, C } = this.env;
     const canvas = this.canvas;
-    const ctx = canvas.getContext("2d");
-    const px = font(ctx, canvas);
-    ctx.clearRect(0, 0, canvas.width, canvas.height);
-    ctx.fillStyle = "#bbb";
+    const { ctx, px } = clearedPlot(canvas);
     if (!this.terms) {
       ctx.fillText("no separate D, G and F:", 4, 2 * px);
       ctx.fillText("not written as a microfacet model", 4, 3.3 * px);
