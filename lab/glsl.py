@@ -16,6 +16,8 @@ from lab.models import SHADER_DIR, Model, ModelError, Value
 
 TARGETS = ("330", "300es")
 VIEW_DIR = SHADER_DIR / "views"
+# A view template's line naming a file (under shaders/) that goes in before it.
+VIEW_INCLUDE = re.compile(r"^[ \t]*//[ \t]*@include[ \t]+(\S+)[ \t]*$", re.MULTILINE)
 
 VERSION_LINES = {
     "330": ["#version 330 core"],
@@ -277,8 +279,15 @@ def assemble_fragment(
 
 
 def add_view(source: Source, text: str, label: str) -> None:
-    """Add a view template; a fragment view also writes the loop guard's flag (the loop's
-    line, 0 if none stopped) to a second colour output that the renderer can read back."""
+    """Add a view template, after the files its `// @include PATH` lines name (code that
+    views share, such as the object's shapes); a fragment view also writes the loop guard's
+    flag (the loop's line, 0 if none stopped) to a second colour output that the renderer
+    can read back."""
+    for relative in VIEW_INCLUDE.findall(text):
+        path = SHADER_DIR / relative
+        if not path.is_file():
+            raise FileNotFoundError(f"{label}: @include {relative}: no such file under shaders/")
+        source.add(path.read_text(encoding="utf-8"), label_of(path))
     output = "out vec4 frag_color;"
     if output not in text or "void main()" not in text:
         source.add(text, label)

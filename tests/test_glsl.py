@@ -113,3 +113,28 @@ def test_enum_choice_is_compiled_in_as_constant():
     assert "const int fresnel = FRESNEL_NONE;" in text
     assert "const int FRESNEL_DIELECTRIC = 1;" in text
     assert "uniform float m;" in text and "uniform vec3 f0;" in text
+
+
+def test_view_includes_come_before_the_view_with_their_own_lines():
+    """The object view's `// @include views/object_shape.glsl` puts that file in once, before
+    the template, its lines labelled with its own name (a compile error in it points there)."""
+    source = glsl.assemble_fragment(load_model("phong"), "object")
+    shape = (glsl.VIEW_DIR / "object_shape.glsl").read_text().splitlines()
+    at = next(
+        i for i, line in enumerate(source.lines) if line.startswith("bool lab_object_surface(")
+    )
+    assert source.origins[at] == (
+        "shaders/views/object_shape.glsl",
+        shape.index(source.lines[at]) + 1,
+    )
+    view_start = next(
+        i for i, (f, _) in enumerate(source.origins) if f == "shaders/views/object.glsl"
+    )
+    assert at < view_start
+    assert sum(line.startswith("uniform int u_shape;") for line in source.lines) == 1
+
+
+def test_a_view_include_of_a_missing_file_says_which():
+    source = glsl.Source()
+    with pytest.raises(FileNotFoundError, match=r"views/x\.glsl: @include views/nowhere\.glsl"):
+        glsl.add_view(source, "// @include views/nowhere.glsl\nvoid f() {}\n", "views/x.glsl")

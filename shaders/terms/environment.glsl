@@ -105,3 +105,21 @@ vec3 one_sample(vec3 V, vec3 N, vec3 X, vec3 Y) {
     return mis_weight(pb, pe_b) * contribution(Lb, pb, V, N, X, Y)
          + mis_weight(pe, pb_e) * contribution(Le, pe, V, N, X, Y);
 }
+
+// What an IBL view adds to a pixel in one pass: the sum of `spp` samples (seeded by the
+// pixel, the pass and the seed) and, for a delta model, `spp` times its mirror image of
+// the environment.
+vec3 pass_sum(vec3 V, vec3 N, vec3 X, vec3 Y, int spp, int frame, int seed) {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    lab_seed(uint(pixel.y * 8192 + pixel.x), uint(frame) * 7919u + uint(seed));
+    vec3 total = vec3(0.0);
+    for (int i = 0; i < 1024; ++i) {
+        if (i >= spp) break;
+        total += one_sample(V, N, X, Y);
+    }
+    if (IS_DELTA) {
+        vec3 R = reflect(-V, N);
+        total += DELTA_REFLECTANCE(R, N, X, Y) * environment(R) * float(spp);
+    }
+    return total;
+}

@@ -22,16 +22,6 @@ void main() {
     vec3 X = vec3(N.z, 0.0, -N.x);  // along the latitude circles, as in the sphere view
     X = dot(X, X) > 1e-12 ? normalize(X) : vec3(1.0, 0.0, 0.0);
     vec3 Y = cross(N, X);
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    lab_seed(uint(pixel.y * 8192 + pixel.x), uint(u_frame) * 7919u + uint(u_seed));
-    vec3 total = vec3(0.0);
-    for (int i = 0; i < 1024; ++i) {
-        if (i >= u_spp) break;
-        total += one_sample(V, N, X, Y);
-    }
-    if (IS_DELTA) {
-        vec3 R = reflect(-V, N);
-        total += DELTA_REFLECTANCE(R, N, X, Y) * environment(R) * float(u_spp);
-    }
-    frag_color = vec4(total, float(u_spp));  // sums: the host divides by the sample count
+    // Sums: the host divides by the sample count.
+    frag_color = vec4(pass_sum(V, N, X, Y, u_spp, u_frame, u_seed), float(u_spp));
 }

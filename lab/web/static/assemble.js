@@ -107,8 +107,16 @@ export function loopGuardPrelude(loops, limit) {
   return [`#define LAB_LOOP_LIMIT ${Math.trunc(limit)}`, LOOP_GUARD, ...counters].join("\n");
 }
 
-/** A view template; a fragment view also writes the loop guard's flag to location 1. */
-export function addView(source, text, label) {
+// A view template's line naming a file (under shaders/) that goes in before it.
+const VIEW_INCLUDE = /^[ \t]*\/\/[ \t]*@include[ \t]+(\S+)[ \t]*$/gm;
+
+/** A view template, after the files its `// @include PATH` lines name (`files`: path under
+ * shaders/ -> text); a fragment view also writes the loop guard's flag to location 1. */
+export function addView(source, text, label, files) {
+  for (const [, relative] of text.matchAll(VIEW_INCLUDE)) {
+    if (!(relative in files)) throw new Error(`${label}: @include ${relative}: no such file under shaders/`);
+    source.add(files[relative], `shaders/${relative}`);
+  }
   const output = "out vec4 frag_color;";
   if (!text.includes(output) || !text.includes("void main()")) {
     source.add(text, label);
@@ -273,7 +281,7 @@ export function assembleFragment(model, view, files, { target = "300es", preambl
   }
   const viewKey = `views/${view}.glsl`;
   if (!(viewKey in files)) throw new Error(`no view template shaders/${viewKey}`);
-  addView(source, files[viewKey], `shaders/${viewKey}`);
+  addView(source, files[viewKey], `shaders/${viewKey}`, files);
   return source;
 }
 

@@ -286,7 +286,7 @@ export function assembleBrdf(model, view, files, { target = "300es", preamble = 
   source.add(fileOff, "<host>");
   source.add(hostOn, "<host>");
   source.add(HOST_BRDF, "<host>");
-  addView(source, viewText, `shaders/${viewKey}`);
+  addView(source, viewText, `shaders/${viewKey}`, files);
   source.add(hostOff, "<host>");
   return source;
 }
