@@ -3,12 +3,12 @@ light, help on tap, live address changes, reset, PNG export, presets, model titl
 
 from __future__ import annotations
 
-import base64
 import io
 from pathlib import Path
 
 import numpy as np
 import pytest
+from webpage import LabTab
 
 from lab.models import load_model
 from lab.web.browser import chromium_path
@@ -32,25 +32,9 @@ def browser(tmp_path_factory):
         yield browser
 
 
-class Page:
+class Page(LabTab):
     def __init__(self, browser, hash_: str, width=1300, height=900, touch=False):
-        self.context = browser.new_context(
-            viewport={"width": width, "height": height}, has_touch=touch, accept_downloads=True
-        )
-        self.page = self.context.new_page()
-        self.errors: list[str] = []
-        self.page.on("console", lambda m: m.type == "error" and self.errors.append(m.text))
-        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
-        self.page.goto(f"{browser.base_url}index.html#{hash_}")
-        self.page.evaluate("window.brdfLab.ready")
-
-    def js(self, expression: str, arg=None):
-        return self.page.evaluate(expression, arg)
-
-    def sphere(self, panel: int = 0) -> np.ndarray:
-        out = self.js("i => brdfLab.readSphere(i)", panel)
-        data = np.frombuffer(base64.b64decode(out["data"]), dtype=np.float32)
-        return data.reshape(out["height"], out["width"], 4)
+        super().__init__(browser, hash_, width, height, has_touch=touch, accept_downloads=True)
 
     def overflow(self) -> dict:
         """How far the page and each control reach past the right edge of the screen."""
@@ -65,9 +49,6 @@ class Page:
               return out;
             }"""
         )
-
-    def close(self):
-        self.context.close()
 
 
 @pytest.mark.parametrize("width,height", SIZES)

@@ -3,13 +3,13 @@ desktop EGL render (llvmpipe), sliders follow the formula, errors name the model
 
 from __future__ import annotations
 
-import base64
 import json
 import re
 from pathlib import Path
 
 import numpy as np
 import pytest
+from webpage import LabTab
 
 from lab.models import load_model, model_names
 from lab.web.browser import chromium_path
@@ -46,31 +46,14 @@ def browser(site):
         yield browser
 
 
-class Page:
-    """A page of the lab with its console errors collected."""
-
-    def __init__(self, browser, hash_: str):
-        self.page = browser.new_page(viewport={"width": 1300, "height": 900})
-        self.errors: list[str] = []
-        self.page.on("console", lambda m: m.type == "error" and self.errors.append(m.text))
-        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
-        self.page.goto(f"{browser.base_url}index.html#{hash_}")
-        self.page.evaluate("window.brdfLab.ready")
-
-    def js(self, expression: str, arg=None):
-        return self.page.evaluate(expression, arg)
-
-    def sphere(self, panel: int = 0) -> np.ndarray:
-        out = self.js("i => brdfLab.readSphere(i)", panel)
-        data = np.frombuffer(base64.b64decode(out["data"]), dtype=np.float32)
-        return data.reshape(out["height"], out["width"], 4)
+Page = LabTab  # a tab of the lab in its own context, its console errors collected
 
 
 @pytest.fixture(scope="module")
 def lab_page(browser):
     page = Page(browser, f"model=lambert&size={SIZE}&light={LIGHT[0]:g},{LIGHT[1]:g}")
     yield page
-    page.page.close()
+    page.close()
 
 
 def test_site_export_is_self_contained(site):
@@ -126,7 +109,7 @@ def test_slider_follows_the_formula(browser, output_dir):
         page.page.screenshot(path=output_dir / "web_slider.png")
         assert page.errors == []
     finally:
-        page.page.close()
+        page.close()
 
 
 def test_presets_and_side_by_side(browser, output_dir):
@@ -147,7 +130,7 @@ def test_presets_and_side_by_side(browser, output_dir):
         page.page.screenshot(path=output_dir / "web_side_by_side.png", full_page=True)
         assert page.errors == []
     finally:
-        page.page.close()
+        page.close()
 
 
 def test_bad_preset_is_reported_on_the_page(browser):
@@ -160,7 +143,7 @@ def test_bad_preset_is_reported_on_the_page(browser):
         assert page.js("brdfLab.values(0).ke") == 50  # the default stays
         assert page.errors == []
     finally:
-        page.page.close()
+        page.close()
 
 
 def test_drag_moves_the_light(lab_page):
@@ -273,7 +256,7 @@ def test_add_light_button(browser):
         assert page.js("brdfLab.state.lights.length") == 1
         assert page.errors == []
     finally:
-        page.page.close()
+        page.close()
 
 
 def test_mirror_spike_has_the_reflectance_length(lab_page, renderer):
@@ -315,7 +298,7 @@ def test_embed_in_a_small_frame(browser):
         assert page.js("brdfLab.spike(0)")["length"] == pytest.approx(0.9, rel=1e-5)
         assert page.errors == []
     finally:
-        page.page.close()
+        page.close()
 
 
 def test_too_many_models_are_reported(browser):
@@ -327,4 +310,4 @@ def test_too_many_models_are_reported(browser):
         assert page.js("document.querySelector('#add-model').disabled")
         assert page.errors == []
     finally:
-        page.page.close()
+        page.close()

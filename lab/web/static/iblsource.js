@@ -26,24 +26,33 @@ export function samplerText(model, files) {
   return text !== undefined && model.path === `shaders/brdfs/${model.name}.glsl` ? text : null;
 }
 
+/** Puts `chunks` ([text, file label] each, in order) between the model and the IBL view
+ * template of `source`, as lab/ibl/integrator.py insert_before_view does. */
+export function insertBeforeView(source, chunks) {
+  const marker = source.lines.lastIndexOf("#define main lab_view_main");
+  const start = marker >= 0 ? marker : source.origins.findIndex(([f]) => f === "shaders/views/ibl.glsl");
+  const lines = [];
+  const origins = [];
+  for (const [text, label] of chunks) {
+    text.replace(/\r\n?/g, "\n").replace(/\n$/, "").split("\n").forEach((line, k) => {
+      lines.push(line);
+      origins.push([label, k + 1]);
+    });
+  }
+  source.lines.splice(start, 0, ...lines);
+  source.origins.splice(start, 0, ...origins);
+}
+
 /** Puts the sampling terms, the model's sampler and the environment terms (the Monte Carlo
  * estimator) between the model and the template, as lab/ibl/integrator.py does. */
 export function withSampler(files) {
   return (source, model) => {
-    const marker = source.lines.lastIndexOf("#define main lab_view_main");
-    const start = marker >= 0 ? marker : source.origins.findIndex(([f]) => f === "shaders/views/ibl.glsl");
     const sampler = samplerText(model, files);
-    const lines = [];
-    const origins = [];
-    const add = (text, label) => text.replace(/\r\n?/g, "\n").replace(/\n$/, "").split("\n").forEach((line, k) => {
-      lines.push(line);
-      origins.push([label, k + 1]);
-    });
-    add(files["terms/sampling.glsl"], "shaders/terms/sampling.glsl");
-    add(sampler ?? NO_SAMPLER, sampler === null ? "<no sampler>" : `shaders/samplers/${model.name}.glsl`);
-    add(files["terms/environment.glsl"], "shaders/terms/environment.glsl"); // the estimator
-    source.lines.splice(start, 0, ...lines);
-    source.origins.splice(start, 0, ...origins);
+    insertBeforeView(source, [
+      [files["terms/sampling.glsl"], "shaders/terms/sampling.glsl"],
+      [sampler ?? NO_SAMPLER, sampler === null ? "<no sampler>" : `shaders/samplers/${model.name}.glsl`],
+      [files["terms/environment.glsl"], "shaders/terms/environment.glsl"], // the estimator
+    ]);
   };
 }
 

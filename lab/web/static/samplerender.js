@@ -4,7 +4,7 @@
 // committed reference as lab/grading/sampling.py judge_render does (sampling.js runs it).
 import { sentence } from "./diagnosis.js";
 import { formatDigits as gFormat } from "./header.js";
-import { STRATEGIES, environmentTextures, loadEnvironment } from "./iblsource.js";
+import { STRATEGIES, environmentTextures, insertBeforeView, loadEnvironment } from "./iblsource.js";
 import { topFirst } from "./views.js";
 
 const ENV_UNIT = 8; // texture units of the environment, as the IBL view's
@@ -55,13 +55,7 @@ async function renderPass(panel, check, env, spp, seed) {
 
 /** terms/environment.glsl (the estimator) before the view; the sampler is the model's. */
 function withEstimator(files) {
-  return (source) => {
-    const marker = source.lines.lastIndexOf("#define main lab_view_main");
-    const start = marker >= 0 ? marker : source.origins.findIndex(([f]) => f === "shaders/views/ibl.glsl");
-    const lines = files["terms/environment.glsl"].replace(/\r\n?/g, "\n").replace(/\n$/, "").split("\n");
-    source.lines.splice(start, 0, ...lines);
-    source.origins.splice(start, 0, ...lines.map((_, k) => ["shaders/terms/environment.glsl", k + 1]));
-  };
+  return (source) => insertBeforeView(source, [[files["terms/environment.glsl"], "shaders/terms/environment.glsl"]]);
 }
 
 const luminance = (rgb, i, luma, clean) => {
