@@ -26,3 +26,21 @@ def test_report_says_missed_and_what_was_off_screen():
     assert "full quality" not in report
     assert "p95 50.0 ms over 20 frames; target p95 <= 33 ms: MISSED" in report
     assert report.endswith("NOT all visible (off screen: object)")
+
+
+def test_comparison_prints_both_medians_and_the_difference():
+    report = bench([300.0, 340.0, 320.0], [500.0], [10.0] * 20)
+    report.compared = ("/tmp/before", [400.0, 380.0, 390.0], [640.0])
+    last = report.report().splitlines()[-1]
+    assert last.startswith("  compared with /tmp/before (loads in turn, one browser)")
+    assert "first render median 390 ms there, 320 ms here (-70 ms)" in last
+    assert last.endswith("full quality 640 ms there, 500 ms here (-140 ms)")
+
+
+def test_compare_with_a_directory_that_is_no_site_says_what_to_give(tmp_path, capsys):
+    from lab.cli import main
+
+    assert main(["web-bench", "--compare", str(tmp_path), "--loads", "1"]) != 0
+    err = capsys.readouterr().err
+    assert f"{tmp_path}: no index.html there" in err
+    assert "brdf-lab web-export DIR" in err

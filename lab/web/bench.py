@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import statistics
 import tempfile
 from dataclasses import dataclass, field
+from pathlib import Path
 
 FIRST_RENDER_TARGET_MS = 300.0
 ALL_VIEWS = "lobe3d,sh,terms,slice,albedo,object"  # with the sphere and the polar plot: every view
@@ -31,6 +33,8 @@ class WebBench:
     views: str = ""
     offscreen: tuple[str, ...] = ()  # views not wholly inside the window (they would wait)
     full_render_ms: list[float] = field(default_factory=list)  # every view at full quality
+    # With --compare: the other site's directory and its first and full-quality renders.
+    compared: tuple[str, list[float], list[float]] | None = None
 
     @property
     def p95(self) -> float:
@@ -61,9 +65,27 @@ class WebBench:
         shown = f"sphere, polar, {self.views.replace(',', ', ')}" if self.views else "sphere, polar"
         header = f"web lab, headless Chromium ({self.renderer}), {self.model} at "
         lines = [header + f"{self.size}x{self.size}, views {shown}:", first_line, slider_line]
+        if self.compared:
+            lines.append(self.comparison())
         if self.offscreen:
             lines.append(f"  NOT all visible (off screen: {', '.join(self.offscreen)})")
         return "\n".join(lines)
+
+    def comparison(self) -> str:
+        """Both builds' medians, loaded in turn in one browser (the machine's drift between
+        runs, tens of ms, is then the same for both)."""
+        where, first, full = self.compared
+        mine, theirs = statistics.median(self.first_render_ms), statistics.median(first)
+        text = (
+            f"  compared with {where} (loads in turn, one browser): first render median "
+            f"{theirs:.0f} ms there, {mine:.0f} ms here ({mine - theirs:+.0f} ms)"
+        )
+        if full and self.full_render_ms:
+            here, there = statistics.median(self.full_render_ms), statistics.median(full)
+            text += (
+                f"; full quality {there:.0f} ms there, {here:.0f} ms here ({here - there:+.0f} ms)"
+            )
+        return text
 
 
 def first_float_param(model_name: str) -> str:
@@ -76,37 +98,47 @@ def first_float_param(model_name: str) -> str:
     raise ValueError(f"model {model_name} has no float parameter to move")
 
 
+class BenchError(ValueError):
+    """What the bench was asked cannot be done (a --compare directory that is not a site)."""
+
+
 def run(
-    size: int = 512, model: str = "phong", loads: int = 5, steps: int = 120, views: str = ALL_VIEWS
+    size: int = 512,
+    model: str = "phong",
+    loads: int = 5,
+    steps: int = 120,
+    views: str = ALL_VIEWS,
+    compare: Path | None = None,
 ) -> WebBench:
     """Time page load -> first render of every view (performance.now() at the first finished
     frame, i.e. since navigation start in a new tab left idle for TAB_IDLE_MS; the costly
     views coarse, as while a student drags) -> every view at full quality (the next frame),
-    and the frame time while a slider moves (the costly views coarse)."""
+    and the frame time while a slider moves (the costly views coarse). With `compare` (a
+    site written by `brdf-lab web-export`), its page loads after each of this build's."""
     from lab.web.browser import chromium
     from lab.web.site import export, serving
 
     param = first_float_param(model)
-    with (
-        tempfile.TemporaryDirectory() as tmp,
-        serving(export(tmp).parent) as url,
-        chromium() as browser,
-    ):
-        first = []
-        full: list[float] = []
-        frames: list[float] = []
+    if compare is not None and not (Path(compare) / "index.html").is_file():
+        raise BenchError(
+            f"{compare}: no index.html there: give a directory that 'brdf-lab web-export DIR' "
+            "wrote (run it in the checkout to compare with)"
+        )
+    shown = f"&views={views}" if views else ""
+    address = f"index.html#model={model}&size={size}&light=30,0{shown}"
+    with contextlib.ExitStack() as stack:
+        tmp = stack.enter_context(tempfile.TemporaryDirectory())
+        url = stack.enter_context(serving(export(tmp).parent))
+        other = stack.enter_context(serving(compare)) if compare is not None else None
+        browser = stack.enter_context(chromium())
+        first, full, frames = [], [], []
+        their_first: list[float] = []
+        their_full: list[float] = []
         renderer = "?"
+        offscreen: tuple[str, ...] = ()
         for _ in range(max(1, loads)):
-            # Tall enough that every view is on screen: views out of sight do not render.
-            page = browser.new_page(viewport=VIEWPORT)
-            page.wait_for_timeout(TAB_IDLE_MS)
-            shown = f"&views={views}" if views else ""
-            page.goto(f"{url}index.html#model={model}&size={size}&light=30,0{shown}")
-            page.evaluate("window.brdfLab.ready")
-            first.append(page.evaluate("brdfLab.state.firstRenderMs"))
-            page.wait_for_function("brdfLab.state.fullRenderMs !== null")
-            full.append(page.evaluate("brdfLab.state.fullRenderMs"))
-            offscreen = page.evaluate(OFFSCREEN_JS)
+            page = _load(browser, url + address, first, full)
+            offscreen = tuple(page.evaluate(OFFSCREEN_JS))
             if not frames:
                 renderer = page.evaluate(
                     "(() => { const gl = brdfLab.panel(0).gl;"
@@ -117,6 +149,21 @@ def run(
                 page.evaluate(f"brdfLab.sliderFrames(0, '{param}', 10)")  # warm up
                 frames = page.evaluate(f"brdfLab.sliderFrames(0, '{param}', {steps})")
             page.close()
-    return WebBench(
-        size, model, first, frames, renderer, views, tuple(offscreen), full_render_ms=full
-    )
+            if other is not None:
+                _load(browser, other + address, their_first, their_full).close()
+    compared = (str(compare), their_first, their_full) if compare is not None else None
+    return WebBench(size, model, first, frames, renderer, views, offscreen, full, compared=compared)
+
+
+def _load(browser, address: str, first: list[float], full: list[float]):
+    """Opens `address` in a new tab left idle first (tall enough that every view is on
+    screen: views out of sight do not render); appends its first and full-quality render
+    times and returns the page."""
+    page = browser.new_page(viewport=VIEWPORT)
+    page.wait_for_timeout(TAB_IDLE_MS)
+    page.goto(address)
+    page.evaluate("window.brdfLab.ready")
+    first.append(page.evaluate("brdfLab.state.firstRenderMs"))
+    page.wait_for_function("brdfLab.state.fullRenderMs !== null")
+    full.append(page.evaluate("brdfLab.state.fullRenderMs"))
+    return page

@@ -78,14 +78,20 @@ def cmd_export(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from lab.web.bench import run
+    from lab.web.bench import BenchError, run
     from lab.web.browser import BrowserMissing
 
+    compare = Path(args.compare) if args.compare else None
     try:
         result = run(
-            size=args.size, model=args.model, loads=args.loads, steps=args.steps, views=args.views
+            size=args.size,
+            model=args.model,
+            loads=args.loads,
+            steps=args.steps,
+            views=args.views,
+            compare=compare,
         )
-    except BrowserMissing as err:
+    except (BrowserMissing, BenchError) as err:
         raise _usage_error(str(err)) from None
     print(result.report())
     return 0
@@ -139,6 +145,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         default=ALL_VIEWS,
         help="views shown besides sphere and polar (comma-separated; '' for none; "
         f"default: all, {ALL_VIEWS})",
+    )
+    p.add_argument(
+        "--compare",
+        metavar="DIR",
+        help="a site 'brdf-lab web-export DIR' wrote from another checkout: its page loads "
+        "after each of this one's, in the same browser, and both medians are printed "
+        "(runs on one machine differ by tens of ms; loads in turn do not)",
     )
     p.set_defaults(func=cmd_bench)
 
