@@ -306,6 +306,17 @@ export function translateLog(log, source) {
 }
 
 // -- compiling on a WebGL2 context ---------------------------------------------------------
+
+/** An RGBA float texture of width x height texels (from `data`, or left empty), read texel
+ * by texel (nearest): the views' inputs and their render targets. */
+export function floatTexture(gl, width, height, data = null) {
+  const texture = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, texture);
+  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  return texture;
+}
 /** Queues the compile and link of a program; finishProgram() waits for it. Queued programs
  * compile in the GPU process while the page goes on (SwiftShader, Chromium without a GPU,
  * takes tens of milliseconds for each). */

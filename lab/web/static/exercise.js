@@ -3,6 +3,7 @@
 // (lab/web/exercises.py) carries each check's inputs, computed by the grader's own code,
 // and the committed references; the comparisons here follow lab/grading/checks.py
 // (compare_values, compare_image) with the same tolerances and messages.
+import { floatTexture } from "./assemble.js";
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { topFirst } from "./views.js";
 import { explain, prepare, rows } from "./diagnosis.js";
@@ -230,7 +231,7 @@ function probeValues(panel, env, degrees, n) {
     L.set(env.direction(degrees[4 * i], degrees[4 * i + 1]), 4 * i);
     V.set(env.direction(degrees[4 * i + 2], degrees[4 * i + 3]), 4 * i);
   }
-  const textures = [env.floatTexture(gl, n, L), env.floatTexture(gl, n, V)];
+  const textures = [floatTexture(gl, n, 1, L), floatTexture(gl, n, 1, V)];
   try {
     return panel.run("probe", n, 1, { u_L: 0, u_V: 1 }, { textures });
   } finally {
@@ -306,7 +307,7 @@ export function runCheck(panel, check, env) {
 
 // -- the page's exercise section -----------------------------------------------------------
 export class ExerciseMode {
-  /** `env`: { lab, el, C, direction, floatTexture, addPanel, openEditor } from lab.js. */
+  /** `env`: { lab, el, C, direction, addPanel, openEditor } from lab.js. */
   constructor(root, env) {
     this.root = root;
     this.env = env;

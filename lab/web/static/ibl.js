@@ -4,6 +4,7 @@
 // and the same procedural environments (lab/ibl/environments.py, served as float data).
 // Passes of samples add up in a float target (additive blending); the view shows the mean
 // and the sample count, and starts again when anything it depends on changes.
+import { floatTexture } from "./assemble.js";
 import { toImage, topFirst } from "./views.js";
 import { STRATEGIES, STRATEGY_TITLES, environmentTextures, loadEnvironment, samplerText, withSampler } from "./iblsource.js";
 
@@ -150,11 +151,7 @@ export class IblView {
 
   makeTarget(gl) {
     if (!gl.getExtension("EXT_float_blend")) throw new Error("this browser cannot add up float images (EXT_float_blend)");
-    const t = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, t);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, this.size, this.size, 0, gl.RGBA, gl.FLOAT, null);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const t = floatTexture(gl, this.size, this.size);
     const fbo = gl.createFramebuffer();
     gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
     gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);

@@ -5,7 +5,7 @@
 // moves. One panel per strategy in the hash (#model=ggx&alpha=0.1&strategy=uniform&
 // strategy=mis_power&env=sky), at equal samples. The program and the environment (its
 // sampling tables and textures) are the web lab's IBL view's own (iblsource.js).
-import { vertexSource } from "./assemble.js";
+import { floatTexture, vertexSource } from "./assemble.js";
 import { defaults, parseModel } from "./header.js";
 import { STRATEGIES, environmentTextures, iblSource, loadEnvironment } from "./iblsource.js";
 
@@ -87,10 +87,7 @@ class Panel {
     this.figure.append(this.canvas, this.caption);
     $("panels").append(this.figure);
     this.ctx2d = this.canvas.getContext("2d");
-    this.sum = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, this.sum);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, size, size, 0, gl.RGBA, gl.FLOAT, null);
-    for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+    this.sum = floatTexture(gl, size, size);
     this.fbo = gl.createFramebuffer();
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
     gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.sum, 0);

@@ -3,12 +3,12 @@
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
 import { direction, planeOfIncidence } from "./geometry.js";
 import { SLIDER_STEPS, parseRgb, parseValue, sliderToValue, valueToSlider } from "./values.js";
-import { assembleFragment, finishProgram, startProgram, translateLog, vertexSource } from "./assemble.js";
+import { assembleFragment, finishProgram, floatTexture, startProgram, translateLog, vertexSource } from "./assemble.js";
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
 import { drawCurve, pageFontPx, showOnly } from "./deck.js";
-import { openModelFile } from "./measured.js";
+import { openModelFile, putModel } from "./measured.js";
 import { draft, draftNames, forgetFile, keepDraft, keepFile, keptFiles, storeProblem } from "./store.js";
 import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
 
@@ -171,14 +171,7 @@ function setUniform(gl, compiled, name, value) {
 /** A float render target; with `flag`, a second one at location 1 for the loop guard's
  * flag (the line of a loop it stopped, per pixel; assemble.js). */
 function floatTarget(gl, width, height, flag = false) {
-  const make = () => {
-    const t = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, t);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-    return t;
-  };
+  const make = () => floatTexture(gl, width, height);
   const texture = make();
   const fbo = gl.createFramebuffer();
   gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
@@ -205,15 +198,6 @@ function loopStop(gl, target, compiled) {
     if (flags[4 * i] > 0) return { line: Math.round(flags[4 * i]), x: i % target.width, y: Math.floor(i / target.width) };
   }
   return null;
-}
-
-function floatTexture(gl, width, data) {
-  const texture = gl.createTexture();
-  gl.bindTexture(gl.TEXTURE_2D, texture);
-  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, 1, 0, gl.RGBA, gl.FLOAT, data);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-  return texture;
 }
 
 // -- a panel: one model, its controls, sphere and polar plot -------------------------------
@@ -495,11 +479,7 @@ class Panel {
     const held = this.held.get(slot);
     if (held?.key === key) return held.texture;
     if (held) gl.deleteTexture(held.texture);
-    const texture = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, texture);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data());
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const texture = floatTexture(gl, width, height, data());
     this.held.set(slot, { key, texture });
     return texture;
   }
@@ -978,7 +958,7 @@ async function openEditor(panel, original = null, options = {}) {
 
 let exercises = null;
 async function openExercise(name) {
-  exercises ??= new ExerciseMode($("#exercise"), { lab, el, C, direction, floatTexture, openEditor,
+  exercises ??= new ExerciseMode($("#exercise"), { lab, el, C, direction, openEditor,
     addPanel: (n) => {
       const panel = addPanel(n);
       scheduleRender();
@@ -990,7 +970,7 @@ async function openExercise(name) {
 }
 
 // What views.js needs from the page.
-const viewEnv = { lab, C, el, viewBox, direction, floatTexture, scheduleRender: () => scheduleRender() };
+const viewEnv = { lab, C, el, viewBox, direction, scheduleRender: () => scheduleRender() };
 
 /** Views off screen skip their (costly) renders; one that comes into sight and missed a
  * render draws then. Until the first report a view counts as visible. */
@@ -1439,16 +1419,7 @@ async function fetchText(path) {
 
 function addModelText(label, code, expectedName = null) {
   const name = expectedName || label.split("/").pop().replace(/\.glsl$/, "");
-  try {
-    lab.models[name] = parseModel(code, label, expectedName);
-    delete lab.modelErrors[name];
-  } catch (err) {
-    if (!(err instanceof ModelError)) throw err;
-    delete lab.models[name];
-    lab.modelErrors[name] = err.message;
-  }
-  if (!lab.order.includes(name)) lab.order.push(name);
-  return name;
+  return putModel(lab, name, () => parseModel(code, label, expectedName));
 }
 
 async function load() {

@@ -3,7 +3,7 @@
 // lab/views/lobe3d.py draws them); every panel on one shared scale; drag (or touch) to
 // orbit, wheel to zoom. The marks (horizon, N, L, R, a delta's spike) are drawn on top.
 import { ModelError, formatG } from "./header.js";
-import { VERSION_LINES, assembleFragment, finishProgram, startProgram, translateLog } from "./assemble.js";
+import { VERSION_LINES, assembleFragment, finishProgram, floatTexture, startProgram, translateLog } from "./assemble.js";
 
 export const LOBE_GRID = [61, 121]; // vertices in theta_o and phi_o (lab/views/lobe3d.py)
 export const LOBE_FAST_GRID = [25, 49]; // while a slider moves
@@ -264,11 +264,7 @@ export class LobeView {
     this.fbos ??= new Map(); // by size: the full one and the coarse one (while the hand moves)
     const key = `${width}x${height}`;
     if (this.fbos.has(key)) return this.fbos.get(key);
-    const texture = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, texture);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, null);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const texture = floatTexture(gl, width, height);
     const depth = gl.createRenderbuffer();
     gl.bindRenderbuffer(gl.RENDERBUFFER, depth);
     gl.renderbufferStorage(gl.RENDERBUFFER, gl.DEPTH_COMPONENT24, width, height);

@@ -120,11 +120,18 @@ export async function openModelFile(file, lab) {
     const model = explorer ? parseBrdf(text, file.name) : parseModel(text, file.name);
     return Object.assign(model, { name, rebuild, opened: file.name, text });
   };
+  const data = binary ? await file.arrayBuffer() : await file.text();
+  return putModel(lab, name, () => (binary
+    ? Object.assign(measuredModel(parseMerl(data, file.name), lab.measuredCode, name),
+      { notText: TABLE_NOT_TEXT, opened: file.name })
+    : rebuild(data)));
+}
+
+/** Puts the model `make()` returns in the page under `name`, or, where it throws a
+ * ModelError, that error (the panels show it); returns the name. */
+export function putModel(lab, name, make) {
   try {
-    lab.models[name] = binary
-      ? Object.assign(measuredModel(parseMerl(await file.arrayBuffer(), file.name), lab.measuredCode, name),
-        { notText: TABLE_NOT_TEXT, opened: file.name })
-      : rebuild(await file.text());
+    lab.models[name] = make();
     delete lab.modelErrors[name];
   } catch (err) {
     if (!(err instanceof ModelError)) throw err;

@@ -7,6 +7,7 @@
 // the same adaptive quadrature over ibl_pdf.glsl. The IBL render check draws the sphere
 // under the environment with the student's sampler alone (views/ibl.glsl, the grader's
 // seeds) and judges it against the committed reference as sampling.judge_render does.
+import { floatTexture } from "./assemble.js";
 import { sentence } from "./diagnosis.js";
 import { formatDigits as gFormat } from "./header.js";
 import { loadEnvironment } from "./iblsource.js";
@@ -27,15 +28,6 @@ const CHUNK_ROWS = 256; // rows of one pdf pass (one render target size for all 
 const TAU = 2 * Math.PI;
 const mod = (a, n) => ((a % n) + n) % n; // Python's %
 
-function texture(gl, width, height, data) {
-  const t = gl.createTexture();
-  gl.bindTexture(gl.TEXTURE_2D, t);
-  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-  return t;
-}
-
 /** A view of one value per texel: `inputs` are (n, 3) directions as flat arrays, bound to
  * units 0, 1, ...; returns the n RGBA results (row by row, as the grader reads them). */
 function texelPass(panel, view, inputs, uniforms, rows) {
@@ -45,7 +37,7 @@ function texelPass(panel, view, inputs, uniforms, rows) {
   const textures = inputs.map((flat) => {
     const padded = new Float32Array(WIDTH * height * 4);
     for (let i = 0; i < n; i++) padded.set(flat.subarray(3 * i, 3 * i + 3), 4 * i);
-    return texture(gl, WIDTH, height, padded);
+    return floatTexture(gl, WIDTH, height, padded);
   });
   try {
     return panel.run(view, WIDTH, height, uniforms, { textures }).subarray(0, 4 * n);

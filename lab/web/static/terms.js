@@ -1,6 +1,7 @@
 // The microfacet terms on their own, as lab/views/terms.py draws them: D against θh (log),
 // G against θo in light 1's plane of incidence, F against θd, from the model's own
 // MICROFACET_TERMS through shaders/views/terms.glsl.
+import { floatTexture } from "./assemble.js";
 import { formatG } from "./header.js";
 import { clearedPlot } from "./plotscale.js";
 
@@ -45,7 +46,7 @@ export class TermsView {
     const textures = [L, V].map((dirs) => {
       const data = new Float32Array(4 * n);
       dirs.forEach((d, k) => data.set(d, 4 * k));
-      return this.env.floatTexture(gl, n, data);
+      return floatTexture(gl, n, 1, data);
     });
     const parts = [0, 1].map((part) => this.panel.run("terms", n, 1, { u_L: 0, u_V: 1, u_part: part }, { textures }));
     textures.forEach((t) => gl.deleteTexture(t));
