@@ -15,22 +15,8 @@ const count = (order) => (order + 1) ** 2;
 export function gaussLegendre(n) {
   const x = new Float64Array(n);
   const w = new Float64Array(n);
-  for (let k = 0; k < Math.ceil(n / 2); k++) {
-    let z = Math.cos((Math.PI * (k + 0.75)) / (n + 0.5));
-    let dp = 0;
-    for (let it = 0; it < 100; it++) {
-      let p0 = 1;
-      let p1 = z;
-      for (let l = 2; l <= n; l++) {
-        const p2 = ((2 * l - 1) * z * p1 - (l - 1) * p0) / l;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = (n * (z * p1 - p0)) / (z * z - 1);
-      const step = p1 / dp;
-      z -= step;
-      if (Math.abs(step) < 1e-16) break;
-    }
+  // P_n(z) and its derivative, by the three-term recurrence.
+  const legendre = (z) => {
     let p0 = 1;
     let p1 = z;
     for (let l = 2; l <= n; l++) {
@@ -38,7 +24,17 @@ export function gaussLegendre(n) {
       p0 = p1;
       p1 = p2;
     }
-    dp = (n * (z * p1 - p0)) / (z * z - 1);
+    return [p1, (n * (z * p1 - p0)) / (z * z - 1)];
+  };
+  for (let k = 0; k < Math.ceil(n / 2); k++) {
+    let z = Math.cos((Math.PI * (k + 0.75)) / (n + 0.5));
+    for (let it = 0; it < 100; it++) {
+      const [p, slope] = legendre(z);
+      const step = p / slope;
+      z -= step;
+      if (Math.abs(step) < 1e-16) break;
+    }
+    const dp = legendre(z)[1]; // at the root itself, for the weight
     x[n - 1 - k] = z;
     x[k] = -z;
     w[k] = w[n - 1 - k] = 2 / ((1 - z * z) * dp * dp);
