@@ -5,7 +5,7 @@
 // moves. One panel per strategy in the hash (#model=ggx&alpha=0.1&strategy=uniform&
 // strategy=mis_power&env=sky), at equal samples. The program and the environment (its
 // sampling tables and textures) are the web lab's IBL view's own (iblsource.js).
-import { floatTexture, vertexSource } from "./assemble.js";
+import { finishProgram, floatTexture, startProgram, vertexSource } from "./assemble.js";
 import { defaults, parseModel } from "./header.js";
 import { STRATEGIES, environmentTextures, iblSource, loadEnvironment } from "./iblsource.js";
 
@@ -37,21 +37,13 @@ async function environment(name) {
   return envs[name];
 }
 
-function compile(type, source) {
-  const shader = gl.createShader(type);
-  gl.shaderSource(shader, source);
-  gl.compileShader(shader);
-  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(shader));
-  return shader;
-}
-
+/** The linked program of a fragment shader (the lab's full-screen vertex stage); throws
+ * the driver's log where it does not compile. */
 function link(fragment) {
-  const program = gl.createProgram();
-  gl.attachShader(program, compile(gl.VERTEX_SHADER, vertexSource("300es")));
-  gl.attachShader(program, compile(gl.FRAGMENT_SHADER, fragment));
-  gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(program));
-  return program;
+  const logs = {};
+  const compiled = finishProgram(startProgram(gl, vertexSource("300es"), fragment), logs);
+  if (!compiled) throw new Error(logs.vertex + logs.fragment + logs.link);
+  return compiled.program;
 }
 
 /** The IBL program for a model, assembled as the web lab's IBL view does (iblsource.js). */
