@@ -248,3 +248,30 @@ def test_desktop_presets_can_be_picked(browser):
         assert page.errors == []
     finally:
         page.close()
+
+
+PLOTS = ("polar", "sh", "terms", "slice", "albedo")  # canvases of axes and labels
+
+
+@pytest.mark.parametrize("width,height", SIZES[::2])
+def test_plot_labels_stay_inside_their_canvas(browser, width, height):
+    """No plot draws into its outermost columns: a tick label centred on an axis end (the
+    90° of the slice and of the albedo) would be cut off there."""
+    views = ",".join(v for v in PLOTS if v != "polar")
+    page = Page(browser, f"model=cook_torrance&views={views}", width, height)
+    try:
+        inked = page.js(
+            """plots => Object.fromEntries(plots.map(name => {
+              const c = document.querySelector('canvas.' + name);
+              const data = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+              const alpha = (x) => { let n = 0;
+                for (let y = 0; y < c.height; y++) n += data[4 * (y * c.width + x) + 3] > 0;
+                return n; };
+              return [name, [alpha(0), alpha(c.width - 1)]];
+            }))""",
+            list(PLOTS),
+        )
+        assert inked == {name: [0, 0] for name in PLOTS}, inked
+        assert page.errors == []
+    finally:
+        page.close()

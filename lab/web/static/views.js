@@ -139,7 +139,8 @@ export class SliceView {
     const f = font(ctx, canvas);
     const left = 3.8 * f;
     const bottom = 2.4 * f;
-    const side = Math.min(canvas.width - left - 6, canvas.height - bottom - 1.6 * f);
+    // The 90° tick label is centred on the right edge of the image: room for its half.
+    const side = Math.min(canvas.width - left - ctx.measureText("90°").width / 2 - 2, canvas.height - bottom - 1.6 * f);
     const top = 1.6 * f;
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     const image = toImage(this.data, n, n, lab.exposure);
@@ -229,7 +230,7 @@ export class AlbedoView {
     const high = Math.max(1, ...finite) * 1.05;
     const topValue = [1.1, 1.5, 2, 3, 5, 10, 20, 50].find((t) => t >= high) ?? 10 ** Math.ceil(Math.log10(high));
     const left = 3 * f;
-    const right = canvas.width - 8;
+    const right = canvas.width - ctx.measureText("90°").width / 2 - 2; // the 90° label fits
     const top = 1.6 * f;
     const bottom = canvas.height - 2.4 * f;
     const x = (deg) => left + ((right - left) * deg) / 90;
