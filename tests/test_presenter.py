@@ -12,6 +12,7 @@ import sys
 import pytest
 
 pytest.importorskip("pytestqt")
+pg = pytest.importorskip("pyqtgraph")
 if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
     pytest.skip("needs a display: run under xvfb-run -a", allow_module_level=True)
 
@@ -63,11 +64,28 @@ def cut_texts(window) -> list[str]:
     for view in window.findChildren(QWidget):  # captions a view paints itself
         if view.isVisible() and getattr(view, "elided", None):
             cut += [f"{type(view).__name__} caption {c!r} elided" for c in view.elided]
+    cut += cut_plot_texts(window)
     for dock in window.docks.values():
         if dock.isVisible() and not dock.visibleRegion().isEmpty():
             need = dock.fontMetrics().horizontalAdvance(dock.windowTitle())
             if need > dock.width() - 50:  # the float and close buttons
                 cut.append(f"dock title {dock.windowTitle()!r}")
+    return cut
+
+
+def cut_plot_texts(window) -> list[str]:
+    """Labels inside the plots (pyqtgraph text items: the polar plot's directions and ring
+    values, axis notes) that reach past their plot's edge, where they are cut off."""
+    cut = []
+    for widget in window.findChildren(pg.PlotWidget):
+        if not widget.isVisible() or widget.viewport().visibleRegion().isEmpty():
+            continue
+        box = widget.getViewBox().sceneBoundingRect()
+        for item in widget.getViewBox().addedItems:
+            if isinstance(item, pg.TextItem) and item.isVisible() and item.toPlainText():
+                r = item.sceneBoundingRect()
+                if r.left() < box.left() - 1 or r.right() > box.right() + 1:
+                    cut.append(f"plot text {item.toPlainText()!r} reaches past its plot")
     return cut
 
 

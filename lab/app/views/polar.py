@@ -160,7 +160,7 @@ class PolarView(View):
             for (line, text), a in zip(self.marks, (0.0, ti, -ti), strict=True):
                 line.setData([0, 1.05 * math.sin(a)], [0, 1.05 * math.cos(a)])
                 text.setPos(1.1 * math.sin(a), 1.1 * math.cos(a))
-            self.place_marks(theta_i)
+        self.place_marks(theta_i)  # every draw: the room for them changes with size and font
         while len(self.curves) < len(lum):
             self.curves.append((self.plot.plot(), self.plot.plot()))
         clipped_x: list[float] = []
@@ -209,8 +209,21 @@ class PolarView(View):
         for text in (incident, mirror):
             text.setVisible(not merged)
         steep = theta_i < 50
-        incident.setAnchor((0.0, 1.0) if steep else (1.0, 1.0))
-        mirror.setAnchor((1.0, 1.0) if steep else (0.0, 1.0))
+        self.anchor_inside(normal, 0.5)
+        self.anchor_inside(incident, 0.0 if steep else 1.0)
+        self.anchor_inside(mirror, 1.0 if steep else 0.0)
+
+    def anchor_inside(self, text: pg.TextItem, preferred: float) -> None:
+        """Anchors `text` at `preferred` (0: it starts at its point, 1: it ends there), or
+        as near to that as keeps the whole text inside the view's width (a large font in a
+        narrow view would otherwise cut it off at the edge)."""
+        # The text's box in pixels (its margins included), in the view's units.
+        width = text.textItem.boundingRect().width() * self.plot.getViewBox().viewPixelSize()[0]
+        (left, right), x = self.plot.getViewBox().viewRange()[0], text.pos().x()
+        anchor = preferred
+        if 0 < width < right - left:
+            anchor = min(max(preferred, (x + width - right) / width), (x - left) / width)
+        text.setAnchor((anchor, 1.0))
 
     def draw_legend(self, lum: list, scale: plotscale.Scale) -> None:
         """Which colour is which model, the quantity and its unit, and what was clipped."""
