@@ -113,3 +113,27 @@ def test_lookup_near_the_specular_peak(renderer, gl_clean):
     got = renderer.probe(model, {"interpolation": "nearest"}, L, V)[:, 0]
     expected = merl.lookup(table, L, V, "nearest")[:, 0]
     assert np.allclose(got, expected) and list(expected) == [1.0, 2.0, 2.0, 3.0, 5.0]
+
+
+def test_render_measured_offers_every_plot_view(renderer, tmp_path, capsys):
+    """`render-measured --view` takes every view with a PNG (the registry's list, not one of
+    its own); the D, G, F view, which a table has not, says what to do instead."""
+    from PIL import Image
+
+    from lab.cli import main
+    from lab.views import plot_views
+
+    table = write_merl(
+        tabulate("ggx", GGX, dims=(30, 30, 60), renderer=renderer), tmp_path / "t.binary"
+    )
+    for view in plot_views():
+        out = tmp_path / f"{view}.png"
+        code = main(["render-measured", str(table), "--view", view, "--size", "64", "-o", str(out)])
+        err = capsys.readouterr().err.strip()
+        if view == "terms":
+            assert code == 2 and err.count("\n") == 0, err
+            assert "t.binary" in err and "brdf-lab fit" in err and "MICROFACET_TERMS" not in err
+            continue
+        assert code == 0, (view, err)
+        pixels = np.asarray(Image.open(out).convert("L"), dtype=np.float64)
+        assert pixels.std() > 5, view  # a picture, not a blank image

@@ -7,7 +7,6 @@ import sys
 from pathlib import Path
 
 FIT_MODELS = ("ward", "blinn_phong", "cook_torrance", "ggx")
-VIEWS = ("sphere", "polar", "lobe3d", "slice", "albedo")
 
 
 def _usage(message: str):
@@ -183,6 +182,8 @@ def cmd_bench(args) -> int:
 
 
 def register(sub) -> None:
+    from lab import views
+
     p = sub.add_parser("tabulate", help="write an analytic model as a MERL .binary table")
     p.add_argument("model", help="model name (see 'brdf-lab models') or a .glsl file")
     p.add_argument("--set", action="append", metavar="NAME=VALUE", help="parameter value")
@@ -233,7 +234,8 @@ def register(sub) -> None:
 
     p = sub.add_parser("render-measured", help="render a view of a MERL .binary table")
     p.add_argument("table", metavar="FILE.binary")
-    p.add_argument("--view", choices=VIEWS, default="sphere")
+    # Every view with a PNG: one that cannot draw a table (the D, G, F terms) says so.
+    p.add_argument("--view", choices=views.plot_views(), default="sphere")
     p.add_argument(
         "--interpolation",
         choices=("linear", "nearest", "both"),

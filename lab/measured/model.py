@@ -28,6 +28,16 @@ class MeasuredModel(Model):
     table: MerlTable | None = None
     _textures: dict = field(default_factory=dict, repr=False)
 
+    @property
+    def no_terms_reason(self) -> str:
+        """What the D, G, F view says of a table (not: define MICROFACET_TERMS)."""
+        path = self.table.path if self.table is not None else None
+        name = str(path) if path else "TABLE.binary"
+        return (
+            f"{name}: a measured table has no D, G and F of its own: fit a microfacet model "
+            f"to it ('brdf-lab fit {name} --model ggx' writes a preset) and view the fit's terms"
+        )
+
     def texture(self, ctx: moderngl.Context) -> moderngl.Texture3D:
         """The table as an RGB float texture (n_p, n_d, n_h) in `ctx`, made once per context."""
         if self.table is None:
