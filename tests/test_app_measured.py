@@ -310,3 +310,17 @@ def test_render_measured_command(table_file, tmp_path, capsys):
         assert main(argv) == 2
         err = capsys.readouterr().err.strip()
         assert err.count("\n") == 0 and words in err, err
+
+
+def test_terms_view_tells_a_table_to_fit_a_model(qtbot, window, table_file):
+    """The D, G, F view names the table and says to fit a microfacet model to it, not to
+    define MICROFACET_TERMS (which a table cannot)."""
+    window.open_file(table_file)
+    dock = window.docks["terms"]
+    dock.setFloating(True)
+    dock.resize(900, 320)
+    dock.show()
+    qtbot.waitExposed(dock)
+    settle(qtbot, window)
+    text = dock.widget().info.text()
+    assert "ggx" in text and "fit a microfacet model" in text and "MICROFACET_TERMS" not in text

@@ -56,3 +56,20 @@ def test_other_models_say_why(page):
     assert page.evaluate("brdfLab.readView(0, 'terms')")["D"] == []
     note = page.locator(".view[data-view='microfacet terms'] .view-note").inner_text()
     assert "does not define MICROFACET_TERMS" in note
+
+
+def test_a_measured_table_is_told_to_fit_a_model(page, renderer, tmp_path):
+    from lab.measured.merl import write_merl
+    from lab.measured.tabulate import tabulate
+
+    table = write_merl(tabulate("ggx", dims=(30, 30, 60), renderer=renderer), tmp_path / "t.binary")
+    before = page.evaluate("brdfLab.state.panels.length")
+    page.set_input_files("#open-file", str(table))
+    page.wait_for_function(f"brdfLab.state.panels.length > {before}", timeout=60_000)
+    page.evaluate("brdfLab.renderNow()")
+    assert page.evaluate(f"brdfLab.readView({before}, 'terms')")["D"] == []
+    notes = page.locator(".view[data-view='microfacet terms'] .view-note").all_inner_texts()
+    note = notes[before]
+    assert "measured table" in note and "fit a microfacet model" in note, note
+    assert "MICROFACET_TERMS" not in note
+    assert page.errors == []

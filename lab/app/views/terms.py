@@ -51,10 +51,13 @@ class TermsView(View):
         s = self.lab.settings
         for plot, curve in self.curves:
             plot.removeItem(curve)
-        self.curves, self.shown, others = [], [], []
+        self.curves, self.shown, others, tables = [], [], [], []
         for state in self.lab.visible_models():
             if not has_terms(state.model):
-                others.append(state.label)
+                # A measured table cannot define its terms: it is told to fit a model instead.
+                (tables if getattr(state.model, "no_terms_reason", "") else others).append(
+                    state.label
+                )
                 continue
             terms = self.cached(
                 state,
@@ -85,6 +88,10 @@ class TermsView(View):
         if others:
             text += ("; " if text else "") + (
                 f"no separate D, G, F: {', '.join(others)} (define MICROFACET_TERMS)"
+            )
+        if tables:
+            text += ("; " if text else "") + (
+                f"{', '.join(tables)}: a measured table, fit a microfacet model to see its terms"
             )
         self.info.setText(text)
         return False

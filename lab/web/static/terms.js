@@ -68,8 +68,12 @@ export class TermsView {
     const { ctx, px } = clearedPlot(canvas);
     if (!this.terms) {
       ctx.fillText("no separate D, G and F:", 4, 2 * px);
-      ctx.fillText("not written as a microfacet model", 4, 3.3 * px);
-      this.note.textContent = `${this.panel.name} does not define MICROFACET_TERMS (see shaders/README.md)`;
+      // A measured table cannot define them (as lab/measured/model.py's no_terms_reason).
+      const table = Boolean(this.panel.model.table);
+      ctx.fillText(table ? "a measured table" : "not written as a microfacet model", 4, 3.3 * px);
+      this.note.textContent = table
+        ? `${this.panel.name}: a measured table has no D, G and F of its own: fit a microfacet model to it (brdf-lab fit) and view the fit's terms`
+        : `${this.panel.name} does not define MICROFACET_TERMS (see shaders/README.md)`;
       return;
     }
     const t = this.terms;
