@@ -44,3 +44,14 @@ def test_compare_with_a_directory_that_is_no_site_says_what_to_give(tmp_path, ca
     err = capsys.readouterr().err
     assert f"{tmp_path}: no index.html there" in err
     assert "brdf-lab web-export DIR" in err
+
+
+def test_floor_line_says_what_the_other_views_add():
+    report = bench([420.0, 400.0, 410.0], [600.0], [10.0] * 20)
+    report.floor_ms = [300.0, 320.0, 310.0]
+    lines = report.report().splitlines()
+    assert lines[2] == (
+        "  sphere and polar plot alone (this machine's floor): median 310 ms; "
+        "the other views add +100 ms"
+    )
+    assert lines[3].startswith("  every view at full quality")

@@ -35,6 +35,9 @@ class WebBench:
     full_render_ms: list[float] = field(default_factory=list)  # every view at full quality
     # With --compare: the other site's directory and its first and full-quality renders.
     compared: tuple[str, list[float], list[float]] | None = None
+    # First renders of the sphere and the polar plot alone, loaded in turn with the others:
+    # what this machine takes before any further view costs anything.
+    floor_ms: list[float] = field(default_factory=list)
 
     @property
     def p95(self) -> float:
@@ -51,6 +54,12 @@ class WebBench:
             f"target <= {FIRST_RENDER_TARGET_MS:.0f} ms: "
             f"{verdict(first <= FIRST_RENDER_TARGET_MS)}"
         )
+        if self.floor_ms:
+            floor = statistics.median(self.floor_ms)
+            first_line += (
+                f"\n  sphere and polar plot alone (this machine's floor): median {floor:.0f} ms; "
+                f"the other views add {first - floor:+.0f} ms"
+            )
         if self.full_render_ms:
             first_line += (
                 f"\n  every view at full quality: median "
@@ -114,7 +123,8 @@ def run(
     frame, i.e. since navigation start in a new tab left idle for TAB_IDLE_MS; the costly
     views coarse, as while a student drags) -> every view at full quality (the next frame),
     and the frame time while a slider moves (the costly views coarse). With `compare` (a
-    site written by `brdf-lab web-export`), its page loads after each of this build's."""
+    site written by `brdf-lab web-export`), its page loads after each of this build's; with
+    `views`, the page with none of them (sphere and polar plot) loads after each too."""
     from lab.web.browser import chromium
     from lab.web.site import export, serving
 
@@ -131,7 +141,7 @@ def run(
         url = stack.enter_context(serving(export(tmp).parent))
         other = stack.enter_context(serving(compare)) if compare is not None else None
         browser = stack.enter_context(chromium())
-        first, full, frames = [], [], []
+        first, full, frames, floor = [], [], [], []
         their_first: list[float] = []
         their_full: list[float] = []
         renderer = "?"
@@ -151,8 +161,12 @@ def run(
             page.close()
             if other is not None:
                 _load(browser, other + address, their_first, their_full).close()
+            if views:
+                _load(browser, url + address.removesuffix(shown), floor, []).close()
     compared = (str(compare), their_first, their_full) if compare is not None else None
-    return WebBench(size, model, first, frames, renderer, views, offscreen, full, compared=compared)
+    return WebBench(
+        size, model, first, frames, renderer, views, offscreen, full, compared, floor_ms=floor
+    )
 
 
 def _load(browser, address: str, first: list[float], full: list[float]):
