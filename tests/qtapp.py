@@ -11,3 +11,14 @@ def settle(qtbot, win) -> None:
         pass
     win.settle()
     qtbot.wait(1)
+
+
+def floating_view(qtbot, win, name: str, size: tuple[int, int] = (900, 320)):
+    """The widget of view `name`, its dock floated at `size` and shown (a view behind a tab
+    does not draw)."""
+    dock = win.docks[name]
+    dock.setFloating(True)
+    dock.resize(*size)
+    dock.show()
+    qtbot.waitExposed(dock)
+    return dock.widget()

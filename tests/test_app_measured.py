@@ -14,7 +14,7 @@ if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
 
 from PyQt6.QtCore import QTimer  # noqa: E402
 from PyQt6.QtWidgets import QApplication  # noqa: E402
-from qtapp import settle  # noqa: E402
+from qtapp import floating_view, settle  # noqa: E402
 
 from lab.app.window import MainWindow  # noqa: E402
 from lab.cli import main  # noqa: E402
@@ -316,11 +316,7 @@ def test_terms_view_tells_a_table_to_fit_a_model(qtbot, window, table_file):
     """The D, G, F view names the table and says to fit a microfacet model to it, not to
     define MICROFACET_TERMS (which a table cannot)."""
     window.open_file(table_file)
-    dock = window.docks["terms"]
-    dock.setFloating(True)
-    dock.resize(900, 320)
-    dock.show()
-    qtbot.waitExposed(dock)
+    view = floating_view(qtbot, window, "terms")
     settle(qtbot, window)
-    text = dock.widget().info.text()
+    text = view.info.text()
     assert "ggx" in text and "fit a microfacet model" in text and "MICROFACET_TERMS" not in text

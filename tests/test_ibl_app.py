@@ -4,18 +4,14 @@ energy-gain flag, the convergence plot; screenshots in tests/output."""
 from __future__ import annotations
 
 import numpy as np
+from qtapp import floating_view
 
 from lab.ibl import environments
 from lab.models import load_model
 
 
 def ibl_view(qtbot, window):
-    dock = window.docks["ibl"]
-    dock.setFloating(True)
-    dock.resize(900, 420)
-    dock.show()
-    qtbot.waitExposed(dock)
-    return dock.widget()
+    return floating_view(qtbot, window, "ibl", (900, 420))
 
 
 def wait_samples(qtbot, view, count):

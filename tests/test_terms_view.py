@@ -89,18 +89,13 @@ def test_a_model_without_terms_is_named(renderer, tmp_path, capsys):
 
 @pytest.mark.skipif(not os.environ.get("DISPLAY"), reason="needs a display (xvfb-run)")
 def test_app_view_overlays_the_microfacet_models(qtbot, window, output_dir):
-    from qtapp import settle
+    from qtapp import floating_view, settle
 
     window.lab.add(load_model("cook_torrance"))
     window.lab.add(load_model("ggx"))
     window.lab.add(load_model("phong"))
-    dock = window.docks["terms"]
-    dock.setFloating(True)
-    dock.resize(900, 320)
-    dock.show()
-    qtbot.waitExposed(dock)
+    view = floating_view(qtbot, window, "terms")
     settle(qtbot, window)
-    view = dock.widget()
     assert [label for label, _ in view.shown] == ["cook_torrance", "ggx"]
     s = window.lab.settings
     for (_, terms), name in zip(view.shown, ("cook_torrance", "ggx"), strict=True):

@@ -28,9 +28,6 @@ def has_terms(model: Model) -> bool:
 
 
 def no_terms_message(model: Model) -> str:
-    reason = getattr(model, "no_terms_reason", "")  # a kind of model with its own advice
-    if reason:
-        return reason
     return (
         f"{model.name} is not written as a microfacet model: define MICROFACET_TERMS (see "
         "shaders/README.md) to plot its D, G and F on their own"
@@ -68,9 +65,9 @@ def microfacet_terms(renderer, model: Model, values, theta_i: float, phi_i: floa
 
     model = as_model(model)
     if not has_terms(model):
-        # A model with its own reason names its own file (a measured table's).
-        where = None if getattr(model, "no_terms_reason", "") else model.path
-        raise ModelError(no_terms_message(model), where)
+        # A kind of model with its own advice (a measured table) names its own file.
+        reason = getattr(model, "no_terms_reason", "")
+        raise ModelError(reason or no_terms_message(model), None if reason else model.path)
     L, V = term_pairs(theta_i, phi_i)
     n = len(L)
     textures = []
