@@ -275,3 +275,28 @@ def test_plot_labels_stay_inside_their_canvas(browser, width, height):
         assert page.errors == []
     finally:
         page.close()
+
+
+@pytest.mark.parametrize(
+    "width,height,embed", [(w, h, False) for w, h in SIZES] + [(1280, 720, True)]
+)
+def test_ring_values_keep_off_the_lobe(browser, width, height, embed):
+    """The polar plot's ring values sit below its baseline or beside its rim, never over the
+    lobe (a Lambert lobe at normal incidence fills the half disc); the rim's is always
+    shown, and no two run into each other. Embedded (a slide's large text) too."""
+    address = "model=lambert&light=0,0" + ("&embed=1" if embed else "")
+    page = Page(browser, address, width, height)
+    try:
+        g = page.js("brdfLab.panel(0).polarGeometry")
+        (cx, cy), radius = g["centre"], g["radius"]
+        labels = g["ringLabels"]
+        assert labels, g
+        for text, left, top, _right, _bottom in labels:
+            assert top >= cy or left >= cx + radius, (text, g)
+        rim = float(labels[0][0])  # drawn from the rim inward
+        assert rim == pytest.approx(g["scale"], rel=0.05)
+        spans = sorted((left, right) for _, left, _, right, _ in labels)
+        assert all(a[1] <= b[0] for a, b in zip(spans, spans[1:], strict=False)), spans
+        assert page.errors == []
+    finally:
+        page.close()

@@ -733,9 +733,20 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   // Text the same size on screen whatever the canvas is scaled to (embedded demos shrink it).
   const shown = canvas.clientWidth || w;
   const font = lab.embed ? Math.round((pageFontPx() * w) / shown) : Math.min(Math.round((12 * w) / shown), Math.round(w / 14));
+  const ringFont = Math.round(font * (lab.embed ? 1 : 0.85));
   const cx = w / 2;
-  const cy = h - Math.round(font * 0.6);
-  const radius = Math.max(Math.min(w / 2 - 2.2 * font, h - (lab.embed ? 4.4 : 4.1) * font), 8);
+  // Ring values clear of the lobes: in a row below the baseline, or (where that gives the
+  // larger disc: a short canvas, a slide's) only the rim's, beside the rim.
+  ctx.font = `${ringFont}px system-ui, sans-serif`;
+  const rimText = formatG(Number(scale.toPrecision(2)));
+  const rimRoom = ctx.measureText(rimText).width + 0.3 * ringFont + 2;
+  const above = (lab.embed ? 3.8 : 3.5) * font;
+  const bottom = Math.round(ringFont * 1.25);
+  const below = Math.min(w / 2 - 2.2 * font, h - bottom - above);
+  const beside = Math.min(w / 2 - Math.max(2.2 * font, rimRoom), h - Math.round(font * 0.6) - above);
+  const rowBelow = below >= beside;
+  const cy = h - (rowBelow ? bottom : Math.round(font * 0.6));
+  const radius = Math.max(rowBelow ? below : beside, 8);
   ctx.clearRect(0, 0, w, h);
   ctx.font = `${font}px system-ui, sans-serif`;
   ctx.lineWidth = 1;
@@ -757,18 +768,35 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
     return [cx - r * Math.sin(a), cy - r * Math.cos(a)];
   };
   ctx.fillStyle = "#999";
-  ctx.font = `${Math.round(font * (lab.embed ? 1 : 0.85))}px system-ui, sans-serif`;
-  let free = cx; // ring values left to right, each only where the last one has ended
-  for (const [r, value] of [...rings].sort((a, b) => a[0] - b[0])) {
+  ctx.font = `${ringFont}px system-ui, sans-serif`;
+  // Each value centred under its ring, from the rim inward (the rim's always shows, kept
+  // inside the canvas); one that would run into the last one drawn is left out.
+  let end = w - 2;
+  const ringLabels = []; // [text, left, top, right, bottom] of each value drawn
+  for (const [r, value] of [...rings].sort((a, b) => b[0] - a[0])) {
     ctx.strokeStyle = r === 1 ? "#8888" : "#5556";
     ctx.beginPath();
     ctx.arc(cx, cy, radius * r, Math.PI, 2 * Math.PI);
     ctx.stroke();
     const text = formatG(Number(value.toPrecision(2)));
-    const x = cx + radius * r + 2;
-    if (scale > 0 && x >= free && x + ctx.measureText(text).width <= w) {
-      ctx.fillText(text, x, cy - 3);
-      free = x + ctx.measureText(text).width + 4;
+    const width = ctx.measureText(text).width;
+    if (scale <= 0) continue;
+    if (!rowBelow) {
+      const x = cx + radius + 0.3 * ringFont;
+      if (r === 1) {
+        ctx.fillText(text, x, cy - 3);
+        ringLabels.push([text, x, cy - 3 - ringFont, x + width, cy - 3]);
+      }
+      continue;
+    }
+    const centred = cx + radius * r - width / 2;
+    const x = r === 1 ? Math.min(centred, end - width) : centred;
+    if (x + width <= end) {
+      ctx.textBaseline = "top";
+      ctx.fillText(text, x, cy + 2);
+      ctx.textBaseline = "alphabetic";
+      ringLabels.push([text, x, cy + 2, x + width, cy + 2 + ringFont]);
+      end = x - 0.5 * ringFont;
     }
   }
   ctx.font = `${font}px system-ui, sans-serif`;
@@ -868,7 +896,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
       ctx.fillText(text, w - ctx.measureText(text).width - 4, (k + 2.6) * 1.2 * font);
     });
   }
-  return { radius, scale, spikeLength };
+  return { radius, scale, spikeLength, centre: [cx, cy], ringLabels };
 }
 
 // -- the editor (edit.js) -------------------------------------------------------------------
