@@ -81,11 +81,25 @@ def cut_plot_texts(window) -> list[str]:
         if not widget.isVisible() or widget.viewport().visibleRegion().isEmpty():
             continue
         box = widget.getViewBox().sceneBoundingRect()
-        for item in widget.getViewBox().addedItems:
-            if isinstance(item, pg.TextItem) and item.isVisible() and item.toPlainText():
-                r = item.sceneBoundingRect()
-                if r.left() < box.left() - 1 or r.right() > box.right() + 1:
-                    cut.append(f"plot text {item.toPlainText()!r} reaches past its plot")
+        texts = [
+            item
+            for item in widget.getViewBox().addedItems
+            if isinstance(item, pg.TextItem) and item.isVisible() and item.toPlainText()
+        ]
+
+        def glyphs(item):  # the text's box without its document margin
+            m = item.textItem.document().documentMargin()
+            return item.sceneBoundingRect().adjusted(m, m, -m, -m)
+
+        for k, item in enumerate(texts):
+            r = item.sceneBoundingRect()
+            if r.left() < box.left() - 1 or r.right() > box.right() + 1:
+                cut.append(f"plot text {item.toPlainText()!r} reaches past its plot")
+            for other in texts[k + 1 :]:
+                if glyphs(item).intersects(glyphs(other)):
+                    cut.append(
+                        f"plot texts {item.toPlainText()!r}, {other.toPlainText()!r} overlap"
+                    )
     return cut
 
 
@@ -131,5 +145,26 @@ def test_presenter_fits_the_projector(qtbot, window, output_dir, size):
             assert cut == [], f"{name}: {cut}"
             # The views get the room: the controls column stays a narrow one.
             assert window.controls_dock.width() <= 0.34 * size[0], name
+    finally:
+        window.toggle_presenter()
+
+
+def test_polar_direction_labels_become_letters_where_words_collide(qtbot, window):
+    """In a small polar plot with the presenter's large text, 'normal', 'incident' and
+    'mirror' would run into each other: N, L and R show instead, the legend says what they
+    are; in a large plot the words show."""
+    from qtapp import floating_view
+
+    window.lab.add(load_model("phong"))
+    window.toggle_presenter()
+    try:
+        for size, letters in (((300, 260), True), ((1000, 700), False)):
+            view = floating_view(qtbot, window, "polar", size)
+            qtbot.wait(60)
+            settle(qtbot, window)
+            words = [text.toPlainText() for _, text in view.marks]
+            assert words == (["N", "L", "R"] if letters else ["normal", "incident", "mirror"])
+            assert ("N normal" in view.legend.text()) == letters
+            assert cut_plot_texts(window) == [], size
     finally:
         window.toggle_presenter()

@@ -20,6 +20,12 @@ from lab.app.views.base import LUMA, QWIDGETSIZE_MAX, View, opaque, pen, state_k
 from lab.app.widgets import SettingCheck
 
 
+def glyph_box(text: pg.TextItem):
+    """The scene box of a text item's letters (its document margin left out)."""
+    margin = text.textItem.document().documentMargin()
+    return text.sceneBoundingRect().adjusted(margin, margin, -margin, -margin)
+
+
 class PolarView(View):
     """The lobe in the plane of incidence, with normal, incident and mirror directions."""
 
@@ -77,6 +83,7 @@ class PolarView(View):
         self.body.addWidget(self.legend)
         self.scale: plotscale.Scale | None = None
         self.marked: float | None = None
+        self.short_marks = False  # N, L, R instead of the words (place_marks)
         self.plot.setRange(xRange=(-1.15, 1.15), yRange=(-0.2, 1.3), padding=0)
 
     def resizeEvent(self, event) -> None:
@@ -205,13 +212,23 @@ class PolarView(View):
         inward once they are flat (past 50 degrees), so all stay inside the view."""
         normal, incident, mirror = (text for _, text in self.marks)
         merged = theta_i < 8
-        normal.setText("normal = incident = mirror" if theta_i == 0 else "normal")
         for text in (incident, mirror):
             text.setVisible(not merged)
         steep = theta_i < 50
-        self.anchor_inside(normal, 0.5)
-        self.anchor_inside(incident, 0.0 if steep else 1.0)
-        self.anchor_inside(mirror, 1.0 if steep else 0.0)
+        # The words, or where they would run into each other (large text in a small plot)
+        # the letters N, L, R, which the legend then explains.
+        for words in (("normal", "incident", "mirror"), ("N", "L", "R")):
+            normal.setText(" = ".join(words) if theta_i == 0 else words[0])
+            incident.setText(words[1])
+            mirror.setText(words[2])
+            self.anchor_inside(normal, 0.5)
+            self.anchor_inside(incident, 0.0 if steep else 1.0)
+            self.anchor_inside(mirror, 1.0 if steep else 0.0)
+            shown = [t for t in (normal, incident, mirror) if t.isVisible()]
+            boxes = [glyph_box(t) for t in shown]
+            if not any(a.intersects(b) for i, a in enumerate(boxes) for b in boxes[i + 1 :]):
+                break
+        self.short_marks = words[0] == "N"
 
     def anchor_inside(self, text: pg.TextItem, preferred: float) -> None:
         """Anchors `text` at `preferred` (0: it starts at its point, 1: it ends there), or
@@ -230,12 +247,17 @@ class PolarView(View):
         quantity = "f_r · cos θo" if self.lab.settings["polar_cos"] else "f_r"
         log = ", log scale" if scale.log else ""
         rows = [f"{quantity} in {plotscale.UNIT} (luminance){log}; light on the right"]
+        if self.short_marks:
+            rows[0] += "; N normal, L toward the light, R mirror direction"
         for state, polar, _ in lum:
             extra = ""
             if polar.spike is not None:
                 extra = f" + delta spike {float(np.asarray(polar.spike) @ LUMA):.3g}"
             colour = QColor(state.color).name()
-            rows.append(f"<span style='color:{colour}'>━━</span> {html.escape(state.label)}{extra}")
+            # The colour's dash and the name on one line (a narrow legend breaks elsewhere).
+            rows.append(
+                f"<span style='color:{colour}'>━━</span>&nbsp;{html.escape(state.label)}{extra}"
+            )
         if scale.clipped:
             note = html.escape(scale.note()).replace("\n", " ")
             rows.append(f"<span style='color:#dc283c'>▼</span> {note}")
