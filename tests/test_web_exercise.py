@@ -275,3 +275,19 @@ def test_every_solution_passes_in_the_page_one_exercise_after_another(page):
         assert shown and all(passed for passed, _ in shown.values()), (exercise.name, shown)
     assert page.evaluate("brdfLab.state.panels.length") <= 2
     assert page.errors == []
+
+
+@pytest.mark.parametrize("exercise", ["02_phong", "07_geometric_attenuation"])
+def test_the_untouched_stub_gets_the_graders_sentence(page, tmp_path, exercise):
+    """The stub is told its TODO steps are not done, in the page as by the grader (not a
+    stored mistake whose values it happens to give)."""
+    from lab.grading.mistakes import STUB_HINT
+
+    stub = next((ROOT / "exercises" / exercise).glob("*.glsl"))
+    graded = grade(exercise, stub, tmp_path)
+    shown = practice(page, exercise, stub.read_text())
+    for name, (passed, message) in graded.items():
+        assert shown[name][0] == passed, name
+        assert likely(shown[name][1]) == likely(message), (name, shown[name][1], message)
+    assert any(likely(m) == f"{STUB_HINT}." for _, m in graded.values()), graded
+    assert page.errors == []

@@ -39,7 +39,9 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
     kept: list[tuple[str, dict[str, np.ndarray]]] = []  # (variant key, its failing values)
     hidden_only: list[list[np.ndarray]] = []
     by_name = {c.name: c for c in exercise.checks}
-    variants = mistakes.variants(exercise, solution)
+    # The unfinished file, read here where it is the course's own (see mistakes.variants).
+    stub = exercise.stub.read_text(encoding="utf-8") if exercise.stub.is_file() else ""
+    variants = mistakes.variants(exercise, solution, stub if stub != solution else "")
     for variant in variants:
         model = _variant_model(exercise, variant, solution)
         if model is None:
@@ -70,6 +72,12 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
                 hidden_only.append(seen)  # it shows under hidden mode's random settings
                 hints[variant.key] = variant.hint
             continue
+        if twin == mistakes.STUB:
+            # Alike with the stub: the stub's hint stands (it is the likelier cause), and
+            # names a stored mistake that may be the student's too.
+            if variant.key.startswith("mistake."):
+                hints[twin] = mistakes.either(hints[twin], variant.hint)
+            continue
         if twin and variant.key.startswith("mutant."):
             # Two edits that behave alike: the student may have made either (2 N·H / N·H
             # and 2 V·H / V·H), so a generated hint names both; a stored one stands.
@@ -92,7 +100,8 @@ def make_diagnosis(exercise: Exercise, grader: Grader) -> list[Path]:
             values[f"{check.name}|term.{name}"] = render(grader.renderer, term_model, term_check)
     folder = exercise.references
     np.savez_compressed(folder / mistakes.VALUES, **values)
-    return [folder / mistakes.VALUES, mistakes.write_hints(exercise, hints, terms)]
+    stored_stub = stub if mistakes.STUB in hints else ""
+    return [folder / mistakes.VALUES, mistakes.write_hints(exercise, hints, terms, stored_stub)]
 
 
 FINGERPRINT = "fingerprint"  # stored as fingerprint|<variant key> and fingerprint|solution

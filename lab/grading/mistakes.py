@@ -7,7 +7,11 @@ programs, each carrying a hint for the student. Two sources:
 - `solutions/NN_topic/mistakes.toml` lists the common mistakes an instructor has seen, each
   a few text edits of the solution with a hint written for students;
 - `mutants()` makes single edits of the solution mechanically (a dot product for another,
-  a dropped 1/pi, a wrong constant) and words a hint from the edit.
+  a dropped 1/pi, a wrong constant) and words a hint from the edit;
+
+and the exercise's unfinished file itself (the stub), the commonest wrong submission of all:
+what it gives often equals some mistake's values by chance (a stub without its specular
+lobe looks like a mirror direction pointing into the surface), whose hint would mislead.
 
 Their values for every check are rendered with the references (`references/diagnosis.npz`,
 hints in `references/diagnosis.json`; no solution code is stored beside the exercise), and
@@ -33,6 +37,12 @@ MISTAKES_FILE = "mistakes.toml"
 VALUES = "diagnosis.npz"
 HINTS = "diagnosis.json"
 MAX_MUTANTS = 32  # per exercise: each one costs a compile when references are made
+STUB = "stub"  # the key of the stub's variant (its code is stored with the hints)
+STUB_HINT = (
+    "it gives just what the exercise's unfinished file (the stub) gives: the steps its TODO "
+    "comments ask for are not done yet, or what they add does not reach the result"
+)
+
 
 # How each name of a dot product or constant reads in a hint.
 SPOKEN = {
@@ -53,12 +63,15 @@ CONSTANTS = {"2.0": "4.0", "4.0": "2.0", "0.5": "1.0", "8.0": "4.0", "0.25": "0.
 class Variant:
     """A likely wrong program: the solution with `edits` applied, and its hint."""
 
-    key: str  # mistake.N (from mistakes.toml) or mutant.N (generated)
+    key: str  # mistake.N (from mistakes.toml), mutant.N (generated) or STUB
     hint: str
     edits: tuple[tuple[str, str], ...]
+    code: str = ""  # a whole program instead of edits (the stub's)
 
     def apply(self, code: str) -> str:
         """The solution with the edits made below its comment header (never in it)."""
+        if self.code:
+            return self.code
         start = _code_start(code)
         head, body = code[:start], code[start:]
         for old, new in self.edits:
@@ -212,9 +225,14 @@ def either(first: str, second: str) -> str:
     return f"{first}; or else {second}"
 
 
-def variants(exercise: Exercise, code: str) -> list[Variant]:
-    """Known mistakes first (their hints are the better ones), then the generated mutants."""
-    return known_mistakes(exercise) + mutants(code)
+def variants(exercise: Exercise, code: str, stub: str | None = None) -> list[Variant]:
+    """The stub first, then known mistakes (their hints are the better ones), then the
+    generated mutants. `stub`: the unfinished file's text (when references are made); by
+    default the one stored with the hints, since at grading time the exercise's file may be
+    the student's own."""
+    stub = _stored(exercise).get(STUB) if stub is None else stub
+    first = [Variant(STUB, STUB_HINT, (), stub)] if isinstance(stub, str) and stub else []
+    return first + known_mistakes(exercise) + mutants(code)
 
 
 def term_parts(spec: dict) -> tuple[dict, tuple[str, ...], str]:
@@ -283,8 +301,12 @@ def read_terms(exercise: Exercise) -> dict[str, dict]:
     )
 
 
-def write_hints(exercise: Exercise, hints: dict[str, str], terms: dict[str, dict]) -> Path:
+def write_hints(
+    exercise: Exercise, hints: dict[str, str], terms: dict[str, dict], stub: str = ""
+) -> Path:
     path = exercise.references / HINTS
     data = {"hints": hints, "terms": terms}
+    if stub:
+        data[STUB] = stub
     path.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n", "utf-8")
     return path
