@@ -3,6 +3,11 @@ one hint for generated edits that behave alike (lab.grading.mistakes.either)."""
 
 from __future__ import annotations
 
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -81,3 +86,65 @@ def test_alike_edits_share_one_hint():
     assert mistakes.either(first, second) == both
     assert mistakes.either(first, first) == first
     assert mistakes.either("x is off", "y") == "x is off; or else y"
+
+
+def test_a_term_that_is_zero_is_called_missing_not_grey():
+    """0 is grey in every channel, but a specular term that is 0 everywhere (never added)
+    is no float used for a colour: it is named as a part that is missing."""
+    check = Check("probe.x", "probe", 1.0)
+    angles = probe_rows()
+    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3)) * [1.0, 0.5, 0.2]
+    said = diagnosis.shape(check, angles, expected, np.zeros_like(expected))
+    assert said.startswith("it is 0 everywhere") and "missing" in said
+    assert "grey" not in said
+    # Zero only where it is wrong (elsewhere right): 'wherever it is wrong'.
+    got = expected.copy()
+    got[::2] = 0.0
+    assert diagnosis.shape(check, angles, expected, got).startswith("it is 0 wherever")
+    # Grey but not zero stays what it was.
+    grey = np.repeat(expected.mean(axis=1, keepdims=True), 3, axis=1)
+    assert "grey" in diagnosis.shape(check, angles, expected, grey)
+
+
+@pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed (apt nodejs)")
+def test_the_pages_shape_says_what_the_graders_says(tmp_path):
+    """static/diagnosis.js's shape() (practice mode) against this one, case by case: the
+    zero term, grey, one channel, a factor, a cosine, grazing, below the surface."""
+    check = Check("probe.x", "probe", 1.0)
+    angles = probe_rows()
+    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3)) * [1.0, 0.5, 0.2]
+    half_zero = expected.copy()
+    half_zero[::2] = 0.0
+    red = expected.copy()
+    red[:, 0] *= 1.5
+    cases = {
+        "zero": np.zeros_like(expected),
+        "half zero": half_zero,
+        "grey": np.repeat(expected.mean(axis=1, keepdims=True), 3, axis=1),
+        "red": red,
+        "factor": expected * 4.0,
+        "cosine": expected * np.cos(np.radians(angles[:, 0]))[:, None],
+        "negative": expected - 3.0,
+    }
+    python = {k: diagnosis.shape(check, angles, expected, v) for k, v in cases.items()}
+    data = {
+        "check": {"atol": check.atol, "rtol": check.rtol},
+        "angles": angles.tolist(),
+        "expected": expected.tolist(),
+        "cases": {k: v.tolist() for k, v in cases.items()},
+    }
+    (tmp_path / "data.json").write_text(json.dumps(data))
+    module = (Path(__file__).resolve().parent.parent / "lab/web/static/diagnosis.js").as_uri()
+    script = tmp_path / "shape.mjs"
+    script.write_text(
+        f'import {{ shape }} from "{module}";\n'
+        'import { readFileSync } from "node:fs";\n'
+        f'const d = JSON.parse(readFileSync("{tmp_path / "data.json"}", "utf8"));\n'
+        "const out = {};\n"
+        "for (const [k, got] of Object.entries(d.cases)) "
+        "out[k] = shape(d.check, d.angles, d.expected, got);\n"
+        "console.log(JSON.stringify(out));\n"
+    )
+    run = subprocess.run(["node", str(script)], capture_output=True, text=True, check=True)
+    assert json.loads(run.stdout) == python
+    assert python["zero"].startswith("it is 0 everywhere")

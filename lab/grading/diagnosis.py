@@ -127,6 +127,14 @@ def shape(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarra
             "the values are wrong only where the solution is 0, with light and view above "
             "the surface — a dot product that the solution clamps (max(..., 0.0)) is not"
         )
+    nothing = (np.abs(got) <= check.atol).all(axis=-1)
+    if nothing[wrong].all() and not zero[wrong].any():
+        # Not "grey where the solution is coloured": zero is no colour at all.
+        where = "everywhere" if nothing.all() else "wherever it is wrong"
+        return (
+            f"it is 0 {where} while the solution's is not — a part is missing, or never "
+            "added to what is returned"
+        )
     for phrase in (
         _ratio(check, angles, expected, got),
         _one_channel(check, expected, got, wrong),

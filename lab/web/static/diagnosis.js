@@ -142,6 +142,13 @@ export function shape(check, angles, expected, got) {
     return "the values are wrong only where the solution is 0, with light and view above " +
       "the surface — a dot product that the solution clamps (max(..., 0.0)) is not";
   }
+  const nothing = got.map((row) => row.every((x) => Math.abs(x) <= check.atol));
+  if (wrong.every((w, i) => !w || (nothing[i] && !zero[i]))) {
+    // Not "grey where the solution is coloured": zero is no colour at all.
+    const where = nothing.every(Boolean) ? "everywhere" : "wherever it is wrong";
+    return `it is 0 ${where} while the solution's is not — a part is missing, or never ` +
+      "added to what is returned";
+  }
   return ratioShape(check, angles, expected, got) || oneChannel(check, expected, got, wrong) ||
     grazing(angles, wrong, zero);
 }
