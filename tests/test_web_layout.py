@@ -300,3 +300,22 @@ def test_ring_values_keep_off_the_lobe(browser, width, height, embed):
         assert page.errors == []
     finally:
         page.close()
+
+
+@pytest.mark.parametrize("theta", [10, 30, 70])
+def test_spike_value_keeps_clear_of_the_spike_and_the_light(browser, theta):
+    """The mirror's 'δ spike, ρ = ...' sits on the spike's outer side: left of the normal,
+    and left of the spike at every height of the text (it leans outward going up), so it
+    crosses neither the spike nor the light's ray."""
+    page = Page(browser, f"model=mirror&light={theta},0", 1024, 768)
+    try:
+        g = page.js("brdfLab.panel(0).polarGeometry")
+        (cx, cy), (left, top, right, bottom) = g["centre"], g["spikeLabel"]
+        slope = np.tan(np.radians(theta))
+        assert left >= 0 and right <= cx
+        for y in np.linspace(top, bottom, 5):
+            if y < cy and cy - y <= g["spikeLength"] * np.cos(np.radians(theta)):
+                assert right <= cx - (cy - y) * slope + 1, (theta, g)
+        assert page.errors == []
+    finally:
+        page.close()

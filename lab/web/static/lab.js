@@ -854,6 +854,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   ctx.fillText(scale > 0 ? fit(`outer circle: ${circle}${log}${clipped}`, `outer circle: ${circle}${log}`,
     `outer: ${circle}`) : "fᵣ = 0 in this plane", 2, 2.2 * font);
   let spikeLength = 0;
+  let spikeLabel = null; // [left, top, right, bottom] of the spike's value
   for (const curve of curves) {
     if (curve.peak > 0 || curve.lum.some((f) => f > 0)) {
       ctx.strokeStyle = curve.color;
@@ -872,11 +873,14 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
       ray(thetaI, spikeLength, curves.length === 1 ? "#ff5a5a" : curve.color, []);
       ctx.lineWidth = 1;
       ctx.fillStyle = "#ff7a7a";
-      // Beside the spike's middle, kept inside the canvas.
+      // Below the spike's middle, on its outer side: clear of the spike (it leans outward
+      // above there), the normal and the light's ray; kept inside the canvas.
       const text = `δ spike, ρ = ${formatG(round(curve.spike))}`;
       const [x, y] = at(thetaI, spikeLength * 0.5);
       const width = ctx.measureText(text).width;
-      ctx.fillText(text, Math.min(Math.max(x + 8, 2), w - width - 2), Math.max(y, 3.2 * font));
+      const [left, base] = [Math.min(Math.max(x - 6 - width, 2), w - width - 2), Math.max(y + font, 3.2 * font)];
+      ctx.fillText(text, left, base);
+      spikeLabel = [left, base - font, left + width, base];
     }
   }
   ctx.fillStyle = "#dc283c";
@@ -896,7 +900,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
       ctx.fillText(text, w - ctx.measureText(text).width - 4, (k + 2.6) * 1.2 * font);
     });
   }
-  return { radius, scale, spikeLength, centre: [cx, cy], ringLabels };
+  return { radius, scale, spikeLength, centre: [cx, cy], ringLabels, spikeLabel };
 }
 
 // -- the editor (edit.js) -------------------------------------------------------------------
