@@ -28,6 +28,7 @@ from PyQt6.QtWidgets import (  # noqa: E402
 from qtapp import settle  # noqa: E402
 
 from lab.app.state import shipped_presets  # noqa: E402
+from lab.app.views.polar import glyph_box  # noqa: E402
 from lab.app.widgets import LiveText  # noqa: E402
 from lab.models import load_model  # noqa: E402
 
@@ -87,16 +88,12 @@ def cut_plot_texts(window) -> list[str]:
             if isinstance(item, pg.TextItem) and item.isVisible() and item.toPlainText()
         ]
 
-        def glyphs(item):  # the text's box without its document margin
-            m = item.textItem.document().documentMargin()
-            return item.sceneBoundingRect().adjusted(m, m, -m, -m)
-
         for k, item in enumerate(texts):
             r = item.sceneBoundingRect()
             if r.left() < box.left() - 1 or r.right() > box.right() + 1:
                 cut.append(f"plot text {item.toPlainText()!r} reaches past its plot")
             for other in texts[k + 1 :]:
-                if glyphs(item).intersects(glyphs(other)):
+                if glyph_box(item).intersects(glyph_box(other)):
                     cut.append(
                         f"plot texts {item.toPlainText()!r}, {other.toPlainText()!r} overlap"
                     )
