@@ -88,12 +88,17 @@ def test_alike_edits_share_one_hint():
     assert mistakes.either("x is off", "y") == "x is off; or else y"
 
 
+def coloured_case() -> tuple[Check, np.ndarray, np.ndarray]:
+    """A probe check, its rows and a coloured solution's values at them."""
+    angles = probe_rows()
+    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3)) * [1.0, 0.5, 0.2]
+    return Check("probe.x", "probe", 1.0), angles, expected
+
+
 def test_a_term_that_is_zero_is_called_missing_not_grey():
     """0 is grey in every channel, but a specular term that is 0 everywhere (never added)
     is no float used for a colour: it is named as a part that is missing."""
-    check = Check("probe.x", "probe", 1.0)
-    angles = probe_rows()
-    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3)) * [1.0, 0.5, 0.2]
+    check, angles, expected = coloured_case()
     said = diagnosis.shape(check, angles, expected, np.zeros_like(expected))
     assert said.startswith("it is 0 everywhere") and "missing" in said
     assert "grey" not in said
@@ -109,10 +114,8 @@ def test_a_term_that_is_zero_is_called_missing_not_grey():
 @pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed (apt nodejs)")
 def test_the_pages_shape_says_what_the_graders_says(tmp_path):
     """static/diagnosis.js's shape() (practice mode) against this one, case by case: the
-    zero term, grey, one channel, a factor, a cosine, grazing, below the surface."""
-    check = Check("probe.x", "probe", 1.0)
-    angles = probe_rows()
-    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3)) * [1.0, 0.5, 0.2]
+    zero term (all or part), grey, one channel, a factor, a cosine, negative values."""
+    check, angles, expected = coloured_case()
     half_zero = expected.copy()
     half_zero[::2] = 0.0
     red = expected.copy()
