@@ -9,13 +9,14 @@ from __future__ import annotations
 import difflib
 import re
 import sys
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
 from lab.glsl import SAMPLER_LINE_BASE, guard_loops, label_of
 from lab.grading import kinds
-from lab.grading.spec import Check, ExerciseError  # noqa: F401 - importable from here
+from lab.grading.scope import check_names, exercise_names
+from lab.grading.spec import Check, ExerciseError, with_reference  # noqa: F401
 from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
 from lab.models import Model, ModelError, Param, load_model, parse_model
 
@@ -44,6 +45,7 @@ class Exercise:
     replaces: str | None = None  # the library term file the student's file stands in for
     loop_limit: int = LOOP_LIMIT  # iterations per loop and invocation before the guard stops it
     sampler_for: str | None = None  # a library model whose BRDF sampler the student writes
+    api: list[str] = field(default_factory=list)  # library names the handout gives (scope.py)
 
     @property
     def name(self) -> str:
@@ -111,11 +113,14 @@ def load_exercise(folder: str | Path) -> Exercise:
             replaces=spec.get("replaces"),
             loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
             sampler_for=spec.get("sampler_for"),
+            api=[str(name) for name in spec.get("api", [])],
         )
     except (KeyError, TypeError) as err:
         raise ExerciseError(f"{spec_path}: missing or malformed entry {err}") from None
     if exercise.loop_limit < 1:
         raise ExerciseError(f"{spec_path}: loop_limit must be a positive number of iterations")
+    wrapper = exercise.wrapper or exercise.sampler_for  # the value kinds' conditioning:
+    exercise.checks = with_reference(exercise.checks, exercise.model_name, exercise.stub, wrapper)
     names = [c.name for c in exercise.checks]
     if len(set(names)) != len(names):
         raise ExerciseError(f"{spec_path}: two checks share a name")
@@ -211,14 +216,18 @@ def check_functions(code: str, required: list[str], label: str) -> None:
             )
 
 
-def _preprocessed(code: str, label: str, trusted: bool) -> str:
+def _preprocessed(exercise: Exercise, code: str, label: str, trusted: bool) -> str:
     """What the compiler sees. The instructor's own code without directives (a variant of
     the solution, `trusted`) only loses its comments to the preprocessor, so they are
-    blanked here: a glslang process per variant would cost 40-70 ms each."""
+    blanked here: a glslang process per variant would cost 40-70 ms each. A student's file
+    may only name the library's API (lab.grading.scope)."""
     if trusted and "#" not in code:
         code = re.sub(r"/\*.*?\*/", lambda m: "\n" * m.group().count("\n"), code, flags=re.S)
         return re.sub(r"//[^\n]*", "", code)
-    return preprocess(code, label)
+    compiled = preprocess(code, label)
+    if not trusted:
+        check_names(compiled, label, exercise_names(exercise), exercise.api)
+    return compiled
 
 
 def build_model(exercise: Exercise, path: Path, code: str, trusted: bool = False) -> Model:
@@ -234,7 +243,7 @@ def build_model(exercise: Exercise, path: Path, code: str, trusted: bool = False
     stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
     try:
         check_directives(code, label, stub.includes)
-        compiled = _preprocessed(code, label, trusted)  # no #if 0, no macros
+        compiled = _preprocessed(exercise, code, label, trusted)  # no #if 0, no macros
         check_functions(compiled, exercise.functions, label)
         if exercise.wrapper:
             wrapper = load_model(exercise.wrapper)
@@ -316,7 +325,7 @@ def sampler_model(exercise: Exercise, path: Path, code: str, trusted: bool = Fal
     label = label_of(path)
     try:
         check_directives(code, label, [])
-        compiled = _preprocessed(code, label, trusted)
+        compiled = _preprocessed(exercise, code, label, trusted)
         check_functions(compiled, exercise.functions, label)
         model = replace(load_model(exercise.sampler_for))
     except (ModelError, SourceError) as err:
