@@ -89,8 +89,14 @@ def _grade_with(pool, args) -> int:
     exercises = _exercises(args.exercise)
     if args.submission and len(exercises) != 1:
         raise UsageError("--submission grades one exercise: give one EXERCISE_DIR (or use --from)")
-    if args.seed is not None and not all(e.solution.is_file() for e in exercises):
-        raise UsageError("--seed renders the solutions live: solutions/ must sit beside exercises/")
+    missing = [e for e in exercises if not e.solution.is_file()] if args.seed is not None else []
+    if missing:
+        raise UsageError(
+            f"--seed (hidden mode) renders the solutions live and {missing[0].solution} is "
+            "not there: only the instructor's copy has solutions/ beside exercises/. Without "
+            "--seed the grader runs in practice mode against the committed references: "
+            f"brdf-lab grade {missing[0].folder} --submission YOUR_FILE"
+        )
     outputs = {k: _output(getattr(args, k)) for k in ("json", "html", "classroom")}
     tasks = []
     for exercise in exercises:

@@ -2,11 +2,14 @@
 
 Gradescope: the submission's id from /autograder/submission_metadata.json (else a hash
 of the submitted files). GitHub Classroom: the pushed commit. The seed is printed and
-written into the results so a student can rerun `brdf-lab grade ... --seed N` at home.
+written into the results with what a student can run at home: practice mode against the
+committed references (hidden mode renders the solutions live, which only the instructor
+has: they can rerun the exact grade with `--seed N`).
 
     python -m lab.grading.seed gradescope METADATA.json SUBMISSION_DIR
     python -m lab.grading.seed commit SHA
     python -m lab.grading.seed annotate RESULTS.json SEED EXERCISES...
+    python -m lab.grading.seed reproduce SEED EXERCISES...
 """
 
 from __future__ import annotations
@@ -44,10 +47,15 @@ def from_commit(sha: str) -> int:
 
 
 def reproduce_line(seed: int, exercises: list[str]) -> str:
+    """The seed, what a student can run at home (practice mode: `--seed` needs solutions/,
+    which students do not have), and that the instructor can rerun the exact grade."""
     names = " ".join(f"exercises/{Path(e).name}" for e in exercises) or "exercises/NN"
     return (
         f"Graded in hidden mode (random parameters and lights) with seed {seed}. "
-        f"Reproduce it at home: brdf-lab grade {names} --seed {seed}"
+        f"Check your files at home in practice mode, against the committed references: "
+        f"brdf-lab grade {names} --from exercises (--from names the folder that holds your "
+        "files, as NN_topic/FILE or FILE). The hidden grade itself renders the solutions, "
+        f"which only your instructor has: they can rerun it exactly with --seed {seed}."
     )
 
 
@@ -69,6 +77,8 @@ def main(argv: list[str]) -> int:
             print(from_commit(argv[1]))
         elif argv[:1] == ["annotate"] and len(argv) >= 3:
             annotate(Path(argv[1]), int(argv[2]), argv[3:])
+        elif argv[:1] == ["reproduce"] and len(argv) >= 2:
+            print(reproduce_line(int(argv[1]), argv[2:]))
         else:
             print(f"usage:\n{usage}", file=sys.stderr)
             return 2
