@@ -40,6 +40,7 @@ RUN_PACKAGES = {
     "libglib2.0-0": None,
     "fonts-dejavu-core": None,
     "glslang-tools": "glslangValidator",  # the grader preprocesses submissions with it
+    "spirv-tools": "spirv-opt",  # the similarity report compares optimised SPIR-V
 }
 TEST_PACKAGES = {
     "xvfb": "Xvfb",
