@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lab.glsl import ShaderCompileError
-from lab.grading import diagnosis, mistakes
+from lab.glsl import ShaderCompileError, label_of
+from lab.grading import diagnosis, localise, mistakes, trace
 from lab.grading.checks import Grader, expected_value, hidden_variant, render
 from lab.grading.exercise import Check, Exercise, ExerciseError, SubmissionError, build_model
 from lab.grading.kinds import kind_of
@@ -190,6 +190,7 @@ class Explainer:
         self._solution_code: dict[Path, str] = {}
         self._matched: dict[tuple[Path, str], str | None] = {}
         self._shown: dict[tuple[Path, str], dict[str, np.ndarray]] = {}
+        self._traces: dict[tuple, trace.Trace | None] = {}
 
     def variants(self, exercise: Exercise) -> list[mistakes.Variant]:
         """Known mistakes and single-edit mutants of the solution (hidden mode renders
@@ -314,9 +315,43 @@ class Explainer:
         else:
             candidates = {k: v for k, v in self.candidates(exercise, check).items() if k in hints}
             key = kind.nearest(check, got, expected, candidates)
+        where = self.locate(exercise, check, model)
         if key in hints:
-            return diagnosis.sentence(hints[key])
+            return diagnosis.sentence(hints[key]) + (f" Where: {where}." if where else "")
+        if where:
+            return f"Where: {where}."
         return diagnosis.sentence(kind.explain(self, exercise, check, model, expected, got, live))
+
+    def locate(self, exercise: Exercise, check: Check, model: Model) -> str:
+        """The line where the student's values first part from the solution's, and how
+        (lab.grading.localise), at the check's pairs or, for an image, pairs of its own;
+        '' where the program cannot be traced or nothing stands out."""
+        if exercise.sampler_for or model.path is None:
+            return ""
+        angles = kind_of(check).angles(check)
+        angles = trace.pairs() if angles is None else angles
+        try:
+            source = Path(model.path).read_text(encoding="utf-8")
+            mine = self._trace(exercise, model, check, angles, source)
+            solution = self.grader.solution_model(exercise)
+            wanted = self._trace(exercise, solution, check, angles,
+                                 exercise.solution.read_text(encoding="utf-8"))
+        except (OSError, ShaderCompileError, ModelError, SubmissionError):
+            return ""
+        if mine is None or wanted is None:
+            return ""
+        finding = localise.locate(mine, wanted)
+        return localise.sentence(finding, source, label_of(model.path)) if finding else ""
+
+    def _trace(self, exercise: Exercise, model: Model, check: Check, angles, source: str):
+        """A program's trace at a check's settings, once per worker."""
+        key = (model.code, tuple(sorted(map(str, check.params.items()))), angles.tobytes())
+        if key not in self._traces:
+            if len(self._traces) > 64:
+                self._traces.clear()
+            last = len(source.splitlines()) if exercise.wrapper else 1 << 30
+            self._traces[key] = trace.run(self.grader.renderer, model, check.params, angles, last)
+        return self._traces[key]
 
     def terms(
         self, exercise: Exercise, check: Check, model: Model, angles: np.ndarray, live: bool

@@ -1,0 +1,430 @@
+"""Where a wrong program first parts from the solution, and how, from both programs' traces.
+
+Each value the student's code computes (lab.grading.trace) is matched by its values with
+the solution's named quantities (its variables and subexpressions, such as N·H or
+4·N·L·N·V). A value is right when it matches one, or when something computed from it
+does (a helper value the solution never names). The first value that is not right while
+everything it reads is right is the likely fault: its line is quoted, and where its
+values stand in a simple relation to a solution quantity (opposite sign, a constant
+factor, a power, a missing clamp, 1 − x, another direction's dot product) that relation
+is said. Where none holds, only the line is named: the evidence does not show a cause.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from lab.grading.trace import Point, Trace, geometry
+
+AGREE = 0.97  # share of the rows both ran on that must agree for a match or a relation
+RTOL, ATOL = 2e-3, 1e-5
+MIN_ROWS = 8
+CHAIN = {"*": "product", "/": "product", "+": "sum", "-": "sum"}
+NICE_POWERS = {k / 2 for k in range(-8, 9)} | {1 / n for n in range(2, 11)}
+SPOKEN = {
+    "NoL": "N·L",
+    "NoV": "N·V",
+    "NoH": "N·H",
+    "VoH": "V·H",
+    "LoH": "L·H",
+    "RoV": "R·V",
+    "LoV": "L·V",
+    "INV_PI": "1/π",
+    "PI": "π",
+}
+NAMED_FACTORS = (
+    (math.pi, "π"),
+    (1 / math.pi, "1/π"),
+    (2.0, "2"),
+    (0.5, "1/2"),
+    (4.0, "4"),
+    (0.25, "1/4"),
+    (180 / math.pi, "180/π (degrees where radians belong)"),
+    (math.pi / 180, "π/180 (radians where degrees belong)"),
+    (8.0, "8"),
+    (0.125, "1/8"),
+    (2 * math.pi, "2π"),
+    (1 / (2 * math.pi), "1/(2π)"),
+)
+
+
+@dataclass
+class Quantity:
+    label: str
+    values: np.ndarray  # (rows, components)
+    ran: np.ndarray  # bool (rows,)
+    name: str = ""  # the variable it is kept in, if any
+
+
+@dataclass
+class Finding:
+    """The likely fault: the student's point, and the relation found (or '')."""
+
+    point: Point
+    statement: Point
+    relation: str
+    calls: list[Point] = field(default_factory=list)  # where a parameter's function is called
+
+
+def spoken(text: str) -> str:
+    """Code as a hint reads it: NoH as N·H, INV_PI as 1/π."""
+    return re.sub(r"\b(\w+)\b", lambda m: SPOKEN.get(m.group(1), m.group(1)), text)
+
+
+def _plain(name: str) -> str:
+    """A variable name reduced for comparison: NdotH, n_dot_h and NoH all read 'noh'."""
+    return name.lower().replace("_", "").replace("dot", "o")
+
+
+def quantities(trace: Trace) -> list[Quantity]:
+    """The solution's traced values, with their names."""
+    out = []
+    for point in trace.traced.points:
+        values, ran, _ = trace.value(point.slot)
+        label = SPOKEN.get(point.name, point.name) if point.name else spoken(point.text)
+        if point.statement and not point.name:
+            label = spoken(point.text.removeprefix("return").strip().rstrip(";"))
+        out.append(Quantity(label, values, ran, point.name))
+    return out
+
+
+def agree(a: np.ndarray, b: np.ndarray, scale: float | None = None) -> np.ndarray:
+    """Rows where two value arrays agree within the float32 noise of a rewrite (`scale`:
+    the size of the values, for the absolute part; by default b's mean)."""
+    with np.errstate(invalid="ignore"):
+        size = float(np.nanmean(np.abs(b))) if scale is None else scale
+        tol = RTOL * np.maximum(np.abs(a), np.abs(b)) + ATOL * (1.0 + size)
+        close = np.abs(a - b) <= tol
+    close |= np.isnan(a) & np.isnan(b)
+    return close.all(axis=-1)
+
+
+def _joint(s_ran: np.ndarray, q: Quantity) -> np.ndarray | None:
+    joint = s_ran & q.ran & np.isfinite(q.values).all(axis=-1)
+    return joint if joint.sum() >= max(MIN_ROWS, 0.25 * s_ran.sum()) else None
+
+
+def matches(values: np.ndarray, ran: np.ndarray, q: Quantity) -> bool:
+    if values.shape[1] != q.values.shape[1]:
+        return False
+    joint = _joint(ran, q)
+    if joint is None:
+        return False
+    return bool(agree(values[joint], q.values[joint]).mean() >= AGREE)
+
+
+def _varies(q: np.ndarray) -> bool:
+    spread = np.nanstd(q)
+    return bool(np.isfinite(spread) and spread > 1e-4 * (1.0 + np.nanmean(np.abs(q))))
+
+
+def _factor_name(c: float) -> str:
+    for value, name in NAMED_FACTORS:
+        if abs(c - value) <= 2e-3 * value:
+            return name
+    return f"{c:.3g}"
+
+
+def relation(s: np.ndarray, q: np.ndarray) -> str:
+    """How the student's values s relate to a quantity's q on the same rows: a phrase with
+    {q} for the quantity's name, or '' when no simple relation holds nearly everywhere."""
+    if not _varies(q):
+        return ""
+    ok = _judge(s, q)
+    if ok(-q):
+        return "has the opposite sign of {q}"
+    big = np.abs(q) > 1e-3 * np.abs(q).max()
+    if big.sum() >= MIN_ROWS:
+        c = float(np.median(s[big] / q[big]))
+        if np.isfinite(c) and abs(c - 1.0) > 1e-2 and c != 0.0 and ok(c * q):
+            return f"is {_factor_name(c)} × {{q}}"
+        total = float(np.median(s + q))
+        if abs(total) > 1e-3 and ok(total - q):
+            return (
+                f"is {total:.3g} − {{q}}"
+                if abs(total - round(total)) > 1e-3
+                else (f"is {round(total)} − {{q}}")
+            )
+    if ok(np.maximum(q, 0.0)) and (q < -1e-4).mean() > 0.01:
+        return "is clamped at 0 where {q} goes negative"
+    if (q >= 0).all() and ok(np.where(q > 0, q, np.minimum(s, 0.0))) and (s < -1e-4).any():
+        return "is not clamped at 0: it goes negative where {q} is 0"
+    inside = ((q > 1e-3) & (q < 0.999) & (s > 1e-30)).all(axis=-1)
+    if inside.sum() >= max(MIN_ROWS, len(q) // 10) and s.shape[1] == 1:
+        p = float(np.median(np.log(s[inside]) / np.log(q[inside])))
+        nice = any(abs(p - n) < 2e-3 * max(1.0, abs(n)) for n in NICE_POWERS)
+        with np.errstate(all="ignore"):
+            powered = np.sign(q) * np.abs(q) ** p
+        if nice and abs(p - 1.0) > 1e-2 and ok(powered):
+            return f"is {{q}} to the power {p:.3g}"
+    return ""
+
+
+def _judge(s: np.ndarray, q: np.ndarray):
+    """A test of a guessed relation: s agrees with the guess on nearly every row where s
+    or q is not negligible (two lobes that are both nearly 0 away from their peaks
+    agree there whatever their relation)."""
+    size = np.abs(s).max(axis=-1) + np.abs(q).max(axis=-1)
+    rows = size > 1e-3 * np.nanmax(size) if np.isfinite(size).any() else size > 0
+    scale = float(np.nanmean(np.abs(q))) if np.isfinite(q).any() else 0.0
+
+    def ok(guess: np.ndarray) -> bool:
+        if rows.sum() < MIN_ROWS:
+            return False
+        guess = np.broadcast_to(guess, s.shape)
+        return bool(agree(s[rows], guess[rows], scale).mean() >= AGREE)
+
+    return ok
+
+
+def _good(points: list[Point], right: dict[int, bool], ran: dict[int, bool]) -> dict[int, bool]:
+    """Right, or read by something good: a helper value the solution never names is good
+    when what is computed from it matches."""
+    consumers: dict[int, list[int]] = {}
+    for p in points:
+        for d in p.deps:
+            consumers.setdefault(d, []).append(p.slot)
+    good: dict[int, bool] = {}
+    for p in sorted(points, key=lambda p: -p.slot):
+        good[p.slot] = (
+            right[p.slot]
+            or not ran[p.slot]
+            or any(good.get(c, False) and ran[c] for c in consumers.get(p.slot, []))
+        )
+    return good
+
+
+def locate(student: Trace, solution: Trace) -> Finding | None:
+    """The student's first value that departs from every solution quantity while what it
+    reads does not, with its relation to the quantity it most likely means; None when the
+    results agree on these pairs or no such value stands out."""
+    mine_f, mine_ran, _ = student.value(0)
+    want_f, want_ran, _ = solution.value(0)
+    both = mine_ran & want_ran
+    if both.sum() < MIN_ROWS or agree(mine_f[both], want_f[both]).mean() >= AGREE:
+        return None
+    known = quantities(solution)
+    points = student.traced.points
+    right, ran, values = {}, {}, {}
+    for p in points:
+        v, r, _ = student.value(p.slot)
+        values[p.slot], ran[p.slot] = (v, r), bool(r.any())
+        # A value kept under one of the solution's names (H) but equal to another of its
+        # quantities (L + V) is no match: the name says what was meant.
+        same_name = [
+            q
+            for q in known
+            if p.name and q.name and _plain(q.name) == _plain(p.name) and _joint(r, q) is not None
+        ]
+        # A function's result must match the solution's result of that function.
+        results = [
+            q
+            for q, s in zip(known, solution.traced.points, strict=True)
+            if not p.name
+            and p.statement
+            and s.statement
+            and not s.name
+            and s.function == p.function
+        ]
+        pool = results or known
+        right[p.slot] = (
+            ran[p.slot]
+            and any(matches(v, r, q) for q in pool)
+            and (not same_name or any(matches(v, r, q) for q in same_name))
+        )
+    good = _good(points, right, ran)
+    faults = [
+        p
+        for p in points
+        if ran[p.slot] and not good[p.slot] and all(good.get(d, True) for d in p.deps)
+    ]
+    if not faults:
+        return None
+    fault = min(faults, key=lambda p: (p.line, p.start))
+    by_slot = {p.slot: p for p in points}
+    # a * b * c is parsed (a * b) * c: a partial product the solution never forms is no
+    # fault of its own, the whole chain is judged.
+    while fault.head in CHAIN:
+        parent = next(
+            (
+                p
+                for p in points
+                if fault.slot in p.deps
+                and not p.statement
+                and p.head in CHAIN
+                and CHAIN[p.head] == CHAIN[fault.head]
+                and p.line == fault.line
+                and not good[p.slot]
+            ),
+            None,
+        )
+        if parent is None:
+            break
+        fault = parent
+    statement = _statement_of(fault, points)
+    # The fault itself, or else what is computed from it on the same line, may show a
+    # relation to what was meant.
+    chain, current = [fault], fault
+    while True:
+        parent = next(
+            (
+                p
+                for p in points
+                if current.slot in p.deps and p.line == fault.line and not good[p.slot]
+            ),
+            None,
+        )
+        if parent is None or parent in chain:
+            break
+        chain.append(parent)
+        current = parent
+    geo = _geometry(student)
+    for p in chain:
+        v, r = values[p.slot]
+        meant = _counterparts(p, statement, solution.traced.points, known)
+        said = _describe(p, v, r, meant, known, geo)
+        if said:
+            return _with_calls(Finding(p, statement, said), points)
+    found = Finding(fault, statement if statement is not None else by_slot[fault.slot], "")
+    return _with_calls(found, points)
+
+
+def _with_calls(finding: Finding, points: list[Point]) -> Finding:
+    if finding.point.head == "parameter":
+        finding.calls = [p for p in points if p.head == finding.point.function]
+    return finding
+
+
+def _geometry(trace: Trace) -> list[Quantity]:
+    rows = len(trace.angles)
+    everywhere = np.ones(rows, bool)
+    out = []
+    for label, values in geometry(trace.angles).items():
+        out.append(Quantity(label, values.reshape(rows, -1), everywhere))
+    return out
+
+
+def _counterparts(
+    p: Point, statement: Point | None, solution: list[Point], known: list[Quantity]
+) -> list[Quantity]:
+    """The solution's quantities that play p's part: the variable of the same name, the
+    same function's result, and within those the subexpressions of the same operation."""
+    if statement is None:
+        return []
+    if statement.name:
+        pool = [
+            s
+            for s in solution
+            if s.statement and s.name and _plain(s.name) == _plain(statement.name)
+        ]
+    else:
+        pool = [
+            s for s in solution if s.statement and not s.name and s.function == statement.function
+        ][-1:]
+    if p is not statement:
+        pool = [
+            s
+            for s in solution
+            for t in pool
+            if t.start <= s.start and s.end <= t.end and not s.statement and s.head == p.head
+        ]
+    by_slot = {s.slot: q for s, q in zip(solution, known, strict=True)}
+    return [by_slot[s.slot] for s in pool]
+
+
+def _describe(
+    p: Point,
+    v: np.ndarray,
+    r: np.ndarray,
+    meant: list[Quantity],
+    known: list[Quantity],
+    geo: list[Quantity],
+) -> str:
+    """A relation of the point's values to a quantity it plays the part of, in words."""
+    named = next((q.label for q in meant), "")
+    for q in geo:  # another direction's dot product, an angle for its cosine...
+        if matches(v, r, q) and q.label != named:
+            return f"equals {q.label}" + (f", not {named}" if named else "")
+    if not _varies(v[r]):
+        return ""  # a constant (4.0 * ke): what is computed from it tells more
+    for q in meant:
+        joint = _joint(r, q) if q.values.shape[1] == v.shape[1] else None
+        if joint is None:
+            continue
+        phrase = relation(v[joint], q.values[joint])
+        if phrase:
+            return phrase.format(q=q.label)
+        phrase = _term(v[joint], q.values[joint], joint, known + geo, q)
+        if phrase:
+            return phrase
+    return ""
+
+
+def _term(
+    s: np.ndarray, q: np.ndarray, joint: np.ndarray, others: list[Quantity], meant: Quantity
+) -> str:
+    """s is q with one of its terms or factors changed: a missing or extra term r
+    (s = q + c r), or a factor r too many or too few (s = q r, s = q / r)."""
+    diff, ok = s - q, _judge(s, q)
+    for other in others:
+        if other is meant or other.values.shape[1] not in (1, s.shape[1]):
+            continue
+        r = other.values[joint]
+        if not other.ran[joint].all() or not np.isfinite(r).all():
+            continue
+        big = (np.abs(r) > 1e-6).all(axis=-1)
+        if big.sum() < MIN_ROWS:
+            continue
+        c = float(np.median(diff[big] / r[big]))
+        k = c + 1.0
+        if np.isfinite(c) and abs(c) > 1e-3 and ok(q + c * r):
+            if abs(k) < 1e-3:
+                return f"lacks the term {other.label} that {meant.label} has"
+            if _factor_name(k) != f"{k:.3g}":  # a named factor: π, 2, 1/2...
+                return f"is {meant.label} with its term {other.label} multiplied by " + (
+                    _factor_name(k)
+                )
+        if _varies(r) and ok(q * r):
+            return f"is {meant.label} multiplied by {other.label}"
+        if _varies(r) and ok(q / np.where(r == 0, np.nan, r)):
+            return f"is {meant.label} divided by {other.label}"
+    return ""
+
+
+def _statement_of(point: Point, points: list[Point]) -> Point | None:
+    if point.statement:
+        return point
+    return next(
+        (p for p in points if p.statement and p.start <= point.start and point.end <= p.end), None
+    )
+
+
+def sentence(finding: Finding, source: str, label: str) -> str:
+    """The finding in words, quoting the student's own line."""
+    lines = source.splitlines()
+    line = finding.point.line
+    quoted = " ".join(lines[line - 1].split()) if 0 < line <= len(lines) else finding.point.text
+    where = f"{label}:{line}"
+    expr = finding.point.text if not finding.point.statement else ""
+    if finding.point.head == "parameter":
+        calls = sorted({p.line for p in finding.calls})
+        at = f" (called at line {', '.join(map(str, calls))})" if calls else ""
+        what = f"the argument {finding.point.name} of {finding.point.function}{at}"
+        said = finding.relation or "matches none of the solution's quantities"
+        return f"{label}:{line}: {what} {said}"
+    if finding.relation:
+        what = f"`{expr}`" if expr else "its value"
+        return f"{where} (`{quoted}`): {what} {finding.relation}"
+    inside = (
+        f", in `{expr}`"
+        if expr and expr not in quoted[: len(expr) + 40]
+        else (f", at `{expr}`" if expr else "")
+    )
+    return (
+        f"{where} (`{quoted}`) is where your values first part from the solution's{inside}: "
+        "what it reads agrees, its result matches none of the solution's quantities"
+    )

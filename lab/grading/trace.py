@@ -1,0 +1,403 @@
+"""Every intermediate value of a shader function, at the grader's direction pairs.
+
+A submission's functions are parsed with tree-sitter's GLSL grammar; each value a line
+computes (a declaration's initial value, what an assignment leaves in its variable, a
+returned value) and each arithmetic subexpression gets a numbered slot. The instrumented
+code records the value of one slot, picked per pixel row by the `grade_trace` view, so
+one draw yields every intermediate at every pair: what lab.grading.localise compares with
+the solution's own intermediates, after Clara (Gulwani, Radiček and Zuleger, PLDI 2018),
+which matches a student's variables with a reference's by their values on the same inputs.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from lab.models import Model
+    from lab.render import Renderer
+
+VIEW = "grade_trace"
+MAX_SLOTS = 400  # rows of the trace image; a longer program is traced in part
+MAX_PAIRS = 1024  # columns: one texture row of direction pairs
+ARITHMETIC = {"+", "-", "*", "/"}
+
+# The recorder: one line, so that the file's line numbers stay its own.
+PRELUDE = " ".join(
+    [
+        "int lab_trace_slot = -1; vec4 lab_trace_value = vec4(0.0);",
+        *(
+            f"{t} lab_tr(int k, {t} v) {{ if (k == lab_trace_slot) "
+            f"lab_trace_value = {rec}; return v; }}"
+            for t, rec in (
+                ("float", "vec4(v, 0.0, 0.0, 1.0)"),
+                ("vec2", "vec4(v, 0.0, 2.0)"),
+                ("vec3", "vec4(v, 3.0)"),
+                ("vec4", "vec4(v.xyz, 4.0)"),
+                ("int", "vec4(float(v), 0.0, 0.0, 1.0)"),
+                ("bool", "vec4(v ? 1.0 : 0.0, 0.0, 0.0, 1.0)"),
+            )
+        ),
+    ]
+)
+
+
+@dataclass
+class Point:
+    """One traced value: a line's result (`name` is the variable it sets, '' for a return)
+    or a subexpression (`statement` False)."""
+
+    slot: int
+    line: int  # 1-based, in the file
+    text: str  # the source of the expression (a statement's: the whole statement)
+    function: str
+    statement: bool
+    name: str = ""
+    start: int = 0  # byte offsets of the expression in the code
+    end: int = 0
+    deps: list[int] = field(default_factory=list)  # slots whose values this one reads
+    head: str = ""  # the operation: a called function's name or an operator
+
+
+@dataclass
+class Traced:
+    """A program's instrumented code and its points (slot k is points[k - 1])."""
+
+    code: str
+    points: list[Point]
+
+
+@functools.lru_cache(maxsize=1)
+def _parser():
+    import tree_sitter
+    import tree_sitter_glsl
+
+    return tree_sitter.Parser(tree_sitter.Language(tree_sitter_glsl.language()))
+
+
+def parse(code: str):
+    """The tree-sitter syntax tree of GLSL `code`."""
+    return _parser().parse(code.encode("utf-8"))
+
+
+def _function_name(node) -> str:
+    declarator = node.child_by_field_name("declarator")
+    while declarator is not None and declarator.type != "function_declarator":
+        declarator = declarator.child_by_field_name("declarator")
+    name = declarator.child_by_field_name("declarator") if declarator is not None else None
+    return name.text.decode() if name is not None else ""
+
+
+def _is_value(node) -> bool:
+    """An expression worth a slot: arithmetic, a call with a variable argument, a negation,
+    a choice; not a name, a literal or a comparison."""
+    if node.type == "binary_expression":
+        operator = node.child_by_field_name("operator")
+        op = operator.text.decode() if operator is not None else node.children[1].text.decode()
+        return op in ARITHMETIC
+    if node.type == "call_expression":
+        args = node.child_by_field_name("arguments")
+        name = node.child_by_field_name("function")
+        if name is None or name.text.decode().startswith("lab_"):
+            return False
+        return args is not None and any(_reads(a) for a in args.named_children)
+    if node.type == "unary_expression":
+        return node.children[0].text.decode() == "-"
+    return node.type == "conditional_expression"
+
+
+def _reads(node) -> bool:
+    """Does the expression read a name (not only literals)?"""
+    if node.type == "identifier":
+        return True
+    return any(_reads(c) for c in node.named_children if c.type != "field_identifier")
+
+
+class _Instrumenter:
+    """Walks the functions of a parsed program, numbering points and noting the edits."""
+
+    def __init__(self, code: str, last_line: int) -> None:
+        self.source = code.encode("utf-8")
+        self.last_line = last_line
+        self.points: list[Point] = []
+        self.edits: dict[tuple[int, int, str], str] = {}  # node -> template with {}
+        self.defined: dict[str, int] = {}  # variable -> slot of its last assignment
+        self.function = ""
+
+    def run(self, tree) -> None:
+        for node in tree.root_node.named_children:
+            if node.type != "function_definition" or node.start_point[0] + 1 > self.last_line:
+                continue
+            body = node.child_by_field_name("body")
+            if body is None:
+                continue
+            self.function, self.defined = _function_name(node), {}
+            self.parameters(node, body)
+            self.block(body)
+
+    def parameters(self, function, body) -> None:
+        """Each value parameter is a point at the body's start: a helper called with the
+        wrong argument shows there."""
+        declarator = function.child_by_field_name("declarator")
+        params = declarator.child_by_field_name("parameters") if declarator else None
+        if params is None:
+            return
+        records = []
+        for param in params.named_children:
+            name = param.child_by_field_name("declarator")
+            words = param.text.decode().split()
+            if name is None or name.type != "identifier" or {"out", "inout"} & set(words):
+                continue
+            slot = self._add(param, name, name.text.decode(), [])
+            self.points[-1].head = "parameter"
+            self.defined[name.text.decode()] = slot
+            records.append(f"lab_tr({slot}, {name.text.decode()});")
+        if records:
+            self.edits[_key(body)] = "{" + " ".join(records) + " {} }"
+
+    def block(self, node) -> None:
+        for child in node.named_children:
+            self.statement(child)
+
+    def statement(self, node) -> None:
+        if len(self.points) >= MAX_SLOTS:
+            return
+        kind = node.type
+        if kind == "compound_statement":
+            self.block(node)
+        elif kind == "declaration":
+            if any(c.type == "type_qualifier" and b"const" in c.text for c in node.children):
+                return  # a constant expression cannot hold a call
+            for init in node.named_children:
+                value = init.child_by_field_name("value")
+                if init.type == "init_declarator" and value is not None:
+                    name = init.child_by_field_name("declarator").text.decode()
+                    slot = self.expression(value, node, name)
+                    self.defined[name] = slot
+        elif kind == "expression_statement":
+            expr = node.named_children[0] if node.named_children else None
+            if expr is not None and expr.type == "assignment_expression":
+                self.assignment(node, expr)
+        elif kind == "return_statement":
+            if node.named_children:
+                self.expression(node.named_children[0], node, "")
+        elif kind in ("if_statement", "for_statement", "while_statement", "do_statement"):
+            for child in node.named_children:
+                if child.type.endswith("statement"):
+                    self.statement(child)
+                elif child.type == "else_clause":
+                    self.block(child)
+
+    def assignment(self, node, expr) -> None:
+        left, right = expr.child_by_field_name("left"), expr.child_by_field_name("right")
+        if left is None or right is None:
+            return
+        target = left
+        while target.type in ("field_expression", "subscript_expression"):
+            target = target.named_children[0]
+        if target.type != "identifier":
+            return
+        name = target.text.decode()
+        operator = expr.children[1].text.decode()
+        deps = [self.sub(right, node)]
+        if operator != "=" or left is not target:  # x += e, v.x = e: the old x counts
+            deps.append(self.defined.get(name, 0))
+        slot = self._add(node, node, name, deps)
+        self.edits[_key(node)] = "{ {} lab_tr(" + str(slot) + ", " + left.text.decode() + "); }"
+        self.defined[name] = slot
+
+    def expression(self, node, statement, name: str) -> int:
+        """A statement's value: its expression gets the statement's slot."""
+        deps = self._deps(node, statement)
+        slot = self._add(statement, node, name, deps)
+        self.edits[_key(node)] = f" lab_tr({slot}, ({{}}))"
+        return slot
+
+    def sub(self, node, statement) -> int:
+        """The slot of a subexpression (0: a name's definition or a trusted input)."""
+        while node.type == "parenthesized_expression" and node.named_children:
+            node = node.named_children[0]
+        if node.type == "identifier":
+            return self.defined.get(node.text.decode(), 0)
+        if not _is_value(node):
+            deps = self._deps(node, statement)
+            return deps[0] if len(deps) == 1 else 0
+        slot = self._add(None, node, "", self._deps(node, statement))
+        self.edits[_key(node)] = f" lab_tr({slot}, ({{}}))"
+        return slot
+
+    def _deps(self, node, statement) -> list[int]:
+        if node.type == "identifier":
+            return [self.defined.get(node.text.decode(), 0)]
+        out = []
+        for child in node.named_children:
+            if child.type in ("field_identifier", "number_literal", "argument_list"):
+                if child.type == "argument_list":
+                    out += [self.sub(a, statement) for a in child.named_children]
+                continue
+            if node.type == "call_expression" and child == node.child_by_field_name("function"):
+                continue
+            out.append(self.sub(child, statement))
+        return [d for d in out if d]
+
+    def _add(self, statement, node, name: str, deps: list[int]) -> int:
+        slot = len(self.points) + 1
+        shown = statement if statement is not None else node
+        self.points.append(
+            Point(
+                slot=slot,
+                line=node.start_point[0] + 1,
+                text=" ".join(shown.text.decode().split()),
+                function=self.function,
+                statement=statement is not None,
+                name=name,
+                start=node.start_byte,
+                end=node.end_byte,
+                deps=[d for d in deps if d],
+                head=_head(node),
+            )
+        )
+        return slot
+
+    def emit(self, node) -> str:
+        pieces, pos = [], node.start_byte
+        for child in node.children:
+            pieces.append(self.source[pos : child.start_byte].decode())
+            pieces.append(self.emit(child))
+            pos = child.end_byte
+        pieces.append(self.source[pos : node.end_byte].decode())
+        text = "".join(pieces)
+        template = self.edits.get(_key(node))
+        return template.replace("{}", text, 1) if template else text
+
+
+def _head(node) -> str:
+    """What an expression does: the called function's name, or its operator."""
+    while node.type == "parenthesized_expression" and node.named_children:
+        node = node.named_children[0]
+    if node.type == "call_expression":
+        name = node.child_by_field_name("function")
+        return name.text.decode() if name is not None else ""
+    if node.type in ("binary_expression", "unary_expression") and node.child_count > 1:
+        return node.children[1 if node.type == "binary_expression" else 0].text.decode()
+    return node.type
+
+
+def _key(node) -> tuple[int, int, str]:
+    return (node.start_byte, node.end_byte, node.type)
+
+
+def instrument(code: str, last_line: int = 1 << 30) -> Traced:
+    """`code` with every function defined up to `last_line` instrumented."""
+    tree = parse(code)
+    walker = _Instrumenter(code, last_line)
+    walker.run(tree)
+    body = walker.emit(tree.root_node)
+    # Keep whatever precedes the tree's root (nothing, usually) and put the recorder
+    # on the first line with the file's own first line.
+    return Traced(PRELUDE + " " + body, walker.points)
+
+
+@dataclass
+class Trace:
+    """What a traced program computed: `values[k]` is slot k's (pairs, 4) array (xyz and
+    the component count in w, 0 where it did not run); `values[0]` is f_r."""
+
+    traced: Traced
+    values: np.ndarray
+    angles: np.ndarray
+
+    def value(self, slot: int) -> tuple[np.ndarray, np.ndarray, int]:
+        """Slot's values (pairs, components), the rows where it ran, its component count."""
+        raw = self.values[slot]
+        ran = raw[:, 3] > 0.5
+        count = int(round(float(np.median(raw[ran, 3])))) if ran.any() else 1
+        count = min(max(count, 1), 3)
+        return raw[:, :count].astype(np.float64), ran, count
+
+
+def run(
+    renderer: Renderer, model: Model, values: dict, angles_deg: np.ndarray, last_line: int = 1 << 30
+) -> Trace | None:
+    """Trace `model` at direction pairs (theta_i, phi_i, theta_o, phi_o in degrees); None
+    where its code cannot be parsed or instrumented code does not compile."""
+    import moderngl
+
+    from lab.glsl import ShaderCompileError
+
+    try:
+        traced = instrument(model.code, last_line)
+    except (ImportError, RecursionError, UnicodeError):
+        return None
+    angles = np.asarray(angles_deg, np.float64).reshape(-1, 4)[:MAX_PAIRS]
+    rows = len(traced.points) + 1
+    texture = renderer.ctx.texture(
+        (len(angles), 1), 4, np.radians(angles).astype(np.float32).tobytes(), dtype="f4"
+    )
+    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    try:
+        texture.use(0)
+        instrumented = replace(model, code=traced.code)
+        fbo = renderer._run(instrumented, VIEW, values, (len(angles), rows), {"u_angles": 0})
+        data = np.frombuffer(fbo.read(components=4, dtype="f4"), np.float32)
+    except (ShaderCompileError, moderngl.Error):
+        return None
+    finally:
+        texture.release()
+    return Trace(traced, data.reshape(rows, len(angles), 4).copy(), angles)
+
+
+def pairs(seed: int = 7, n: int = 192) -> np.ndarray:
+    """Direction pairs for tracing a check that has none of its own (a sphere): spread over
+    the hemisphere, a third near the mirror direction, a few below the horizon."""
+    rng = np.random.default_rng(seed)
+    theta_i = np.degrees(np.arccos(rng.uniform(0.08, 1.0, n)))
+    theta_o = np.degrees(np.arccos(rng.uniform(0.08, 1.0, n)))
+    phi_i = rng.uniform(0.0, 360.0, n)
+    phi_o = rng.uniform(0.0, 360.0, n)
+    near = slice(n // 2, n // 2 + n // 3)
+    theta_o[near] = np.clip(theta_i[near] + rng.normal(0.0, 3.0, n // 3), 1.0, 85.0)
+    phi_o[near] = phi_i[near] + 180.0 + rng.normal(0.0, 5.0, n // 3)
+    below = slice(n - n // 12, n)
+    theta_i[below] = 180.0 - theta_i[below]
+    return np.stack([theta_i, phi_i % 360.0, theta_o, phi_o % 360.0], axis=1)
+
+
+def geometry(angles_deg: np.ndarray) -> dict[str, np.ndarray]:
+    """The quantities every BRDF is built from, in float64 at the pairs, by their names."""
+    a = np.radians(np.asarray(angles_deg, np.float64))
+
+    def unit(theta, phi):
+        return np.stack(
+            [np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], axis=-1
+        )
+
+    L, V = unit(a[:, 0], a[:, 1]), unit(a[:, 2], a[:, 3])
+    half = L + V
+    H = half / np.maximum(np.linalg.norm(half, axis=-1, keepdims=True), 1e-30)
+    R = 2.0 * L[:, 2:3] * np.array([0.0, 0.0, 1.0]) - L
+    dot = functools.partial(np.einsum, "ij,ij->i")
+    out = {
+        "N·L": L[:, 2],
+        "N·V": V[:, 2],
+        "L·V": dot(L, V),
+        "N·H": H[:, 2],
+        "V·H": dot(V, H),
+        "H": H,
+        "R": R,
+        "R·V": dot(R, V),
+        "L + V": half,
+        "θh": np.arccos(np.clip(H[:, 2], -1.0, 1.0)),
+        "θi": np.arccos(np.clip(L[:, 2], -1.0, 1.0)),
+        "θo": np.arccos(np.clip(V[:, 2], -1.0, 1.0)),
+    }
+    out["tan²θh"] = (1.0 - out["N·H"] ** 2) / np.maximum(out["N·H"] ** 2, 1e-30)
+    return out
+
+
+DEGREES = 180.0 / math.pi
