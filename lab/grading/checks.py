@@ -40,6 +40,7 @@ from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.grading.kinds.polar import polar_angles
 from lab.grading.kinds.probe import probe_angles, special_angles
 from lab.grading.result import CheckResult, failed
+from lab.grading.spec import PURPOSES, ExerciseError, infer_purpose
 from lab.grading.submission import portability_warnings
 from lab.models import Model, ModelError
 from lab.render import Light, Renderer
@@ -62,32 +63,62 @@ __all__ = [
 
 
 # -- inputs: hidden variants ------------------------------------------------------------------
+def _drawn_theta(rng: np.random.Generator, purpose: str) -> float:
+    low, high = PURPOSES[purpose]
+    return float(rng.uniform(low, high))
+
+
+def _drawn_param(rng: np.random.Generator, param, value, low: float, high: float):
+    """One parameter drawn across [low, high]: log-uniform where its slider is log."""
+    if param.kind == "float":
+        if param.scale == "log" and low > 0.0:
+            return float(np.exp(rng.uniform(math.log(low), math.log(high))))
+        return float(rng.uniform(low, high))
+    if param.kind == "color" and any(value):  # a term the check switched off stays off
+        return tuple(float(c) for c in rng.uniform(low, high, 3))
+    return value  # enums and switches: the term under test stays
+
+
 def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
     """The check with random parameters, lights and directions drawn from `seed`.
 
-    What the check pins down stays: its enum choices (the term under test) and colours it
-    sets to zero (terms switched off so that the one under test shows alone).
+    Each light keeps what it is for (the check's `purpose`, else what its committed angle
+    says: spec.PURPOSES) and is drawn anew within that class; parameters are drawn across
+    the header's range (log-uniform on log sliders) or the check's own `ranges`. What the
+    check pins down stays: its enum choices (the term under test) and colours it sets to
+    zero (terms switched off so that the one under test shows alone).
     """
     rng = np.random.default_rng([seed, index])
     params = dict(check.params)
-    for name, param in model.params.items():
-        value = params.get(name, param.default)
-        if param.kind == "float":
-            value = float(
-                np.clip(value * math.exp(rng.uniform(-0.35, 0.35)), param.minimum, param.maximum)
+    for name in check.ranges:
+        if name not in model.params:
+            raise ExerciseError(
+                f"check {check.name}: ranges names {name!r}, which is no parameter of the "
+                f"model ({', '.join(model.params)}); fix the name in exercise.toml"
             )
-        elif param.kind == "color" and any(value):  # a term the check switched off stays off
-            value = tuple(float(c) for c in rng.uniform(0.05, 0.9, 3))
-        params[name] = value
+    for name, param in model.params.items():
+        low, high = check.ranges.get(name, (param.minimum, param.maximum))
+        if low < param.minimum or high > param.maximum:
+            raise ExerciseError(
+                f"check {check.name}: ranges.{name} = [{low:g}, {high:g}] leaves the header's "
+                f"range [{param.minimum:g}, {param.maximum:g}]; narrow it in exercise.toml"
+            )
+        params[name] = _drawn_param(rng, param, params.get(name, param.default), low, high)
+    aimed = kind_of(check).purpose_of
+    purposes = list(check.purpose)
+    if aimed != "lights" or not purposes:
+        purposes = [infer_purpose(lt.theta) for lt in check.lights]
     lights = [
-        Light(float(rng.uniform(5, 70)), float(rng.uniform(0, 360)), lt.rgb) for lt in check.lights
+        Light(_drawn_theta(rng, purpose), float(rng.uniform(0, 360)), lt.rgb)
+        for lt, purpose in zip(check.lights, purposes, strict=True)
     ]
+    aim = check.purpose[0] if aimed == "theta_i" and check.purpose else None
     return replace(
         check,
         params=params,
         lights=lights,
         seed=int(rng.integers(1 << 30)),
-        theta_i=float(rng.uniform(15, 70)),
+        theta_i=_drawn_theta(rng, aim or infer_purpose(check.theta_i)),
         phi_i=float(rng.uniform(0, 360)),
     )
 
@@ -205,7 +236,7 @@ class Grader:
                 if seed is not None:
                     check = hidden_variant(check, self.solution_model(exercise), seed, index)
                 expected = self.expected(exercise, check, live=seed is not None)
-            except (OSError, KeyError, ModelError, SubmissionError) as err:
+            except (OSError, KeyError, ModelError, SubmissionError, ExerciseError) as err:
                 result = failed(
                     check, f"cannot get the reference: {err} (ask your instructor)", status="error"
                 )

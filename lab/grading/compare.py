@@ -52,10 +52,15 @@ def bad_values(values: np.ndarray) -> np.ndarray:
     return ~np.isfinite(values).all(axis=-1) | (np.nan_to_num(values) < 0.0).any(axis=-1)
 
 
-def wrong_values(check: Check, expected: np.ndarray, got: np.ndarray) -> np.ndarray:
-    """Mask of rows that are broken or off by more than atol + rtol |expected|."""
+def wrong_values(
+    check: Check, expected: np.ndarray, got: np.ndarray, tolerance: np.ndarray | None = None
+) -> np.ndarray:
+    """Mask of rows that are broken or off by more than `tolerance` (per value; by default
+    atol + rtol |expected|)."""
+    if tolerance is None:
+        tolerance = check.atol + check.rtol * np.abs(expected)
     error = np.abs(np.nan_to_num(got, nan=np.inf) - expected)
-    return bad_values(got) | (error > check.atol + check.rtol * np.abs(expected)).any(axis=-1)
+    return bad_values(got) | (error > tolerance).any(axis=-1)
 
 
 def fmt_rgb(rgb) -> str:
@@ -66,15 +71,24 @@ def fmt_rgb(rgb) -> str:
 
 
 def compare_values(
-    check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarray, what: str
+    check: Check,
+    angles: np.ndarray,
+    expected: np.ndarray,
+    got: np.ndarray,
+    what: str,
+    tolerance: np.ndarray | None = None,
 ) -> CheckResult:
-    """Values within atol + rtol |expected|; the six rows nearest (or beyond) the tolerance
-    are kept with their directions: the failures, or for a pass the closest calls."""
+    """Values within `tolerance` (by default atol + rtol |expected|); the six rows nearest
+    (or beyond) it are kept with their directions: the failures, or for a pass the closest
+    calls."""
     bad = bad_values(got)
     error = np.abs(np.nan_to_num(got, nan=np.inf) - expected)
-    wrong = wrong_values(check, expected, got)
+    wrong = wrong_values(check, expected, got, tolerance)
     with np.errstate(over="ignore", invalid="ignore"):
-        relative = (error / (check.atol + np.abs(expected))).max(-1)
+        if tolerance is None:
+            relative = (error / (check.atol + np.abs(expected))).max(-1)
+        else:  # how far into its own tolerance each row is
+            relative = (error / tolerance).max(-1)
     order = np.argsort(-np.where(bad, np.inf, relative))
     rows = [
         (*(round(float(a), 1) for a in angles[i]), fmt_rgb(expected[i]), fmt_rgb(got[i]))

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from lab.grading.result import CheckResult
-from lab.grading.spec import Check, ExerciseError, parse_lights
+from lab.grading.spec import Check, ExerciseError, parse_lights, parse_purpose, parse_ranges
 from lab.grading.visuals import difference_legend, polar_svg
 
 if TYPE_CHECKING:
@@ -50,6 +50,9 @@ class CheckKind:
     order = 100  # position in listings (built-in kinds first)
     fields: dict[str, Any] = {}  # the keys this kind adds to its table, with their defaults
     diagnose_terms = False  # explanations evaluate the exercise's declared terms alone
+    # What `purpose` names the purpose of: "lights" (one per light), "theta_i" (the check's
+    # light at theta_i, phi_i) or "" (the kind draws its own directions: no purpose).
+    purpose_of = "theta_i"
 
     # -- inputs ------------------------------------------------------------------------------
     def parse(self, table: dict, where: str) -> Check:
@@ -64,8 +67,25 @@ class CheckKind:
         options = {
             key: self._option(table, key, default, where) for key, default in self.fields.items()
         }
+        here = f"{where}: check {table.get('name', '?')}"
+        ranges = parse_ranges(table.pop("ranges", {}), here)
+        purpose: tuple[str, ...] = ()
+        if "purpose" in table:
+            count = {"lights": len(lights), "theta_i": 1}.get(self.purpose_of, 0)
+            if not count:
+                raise ExerciseError(
+                    f"{here}: a {self.name} check draws its own directions; remove `purpose`"
+                )
+            purpose = parse_purpose(table.pop("purpose"), count, here)
         check = Check(
-            kind=self.name, lights=lights, ambient=ambient, params=params, options=options, **table
+            kind=self.name,
+            lights=lights,
+            ambient=ambient,
+            params=params,
+            options=options,
+            purpose=purpose,
+            ranges=ranges,
+            **table,
         )
         self.validate(check, where)
         return check

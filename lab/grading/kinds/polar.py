@@ -48,7 +48,8 @@ class PolarKind(ValueKind):
     def compare(self, check: Check, expected: np.ndarray, raw: np.ndarray) -> CheckResult:
         result = super().compare(check, expected, raw)
         angles = self.angles(check)
-        result.failing = np.nonzero(wrong_values(check, expected, raw))[0].tolist()
+        tolerance = self.tolerance(check, angles, expected, raw)
+        result.failing = np.nonzero(wrong_values(check, expected, raw, tolerance))[0].tolist()
         result.curve = {
             "theta_o": signed_theta(check, angles).tolist(),
             "expected": luminance(expected),

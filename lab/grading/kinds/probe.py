@@ -78,6 +78,7 @@ def special_angles(phi: float) -> np.ndarray:
 class ProbeKind(ValueKind):
     name = "probe"
     order = 10
+    purpose_of = ""  # its rows are drawn from `seed`: spread, near the mirror and below
     what = "direction pairs"
 
     def angles(self, check: Check) -> np.ndarray:

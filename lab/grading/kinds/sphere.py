@@ -41,6 +41,7 @@ def _reference_png(reference: np.ndarray) -> bytes:
 class SphereKind(CheckKind):
     name = "sphere"
     order = 20
+    purpose_of = "lights"  # each light's angle from the view axis
     captions = {
         "reference": "solution",
         "student": "yours",

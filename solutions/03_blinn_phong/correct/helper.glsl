@@ -1,0 +1,19 @@
+// @model blinn_phong
+// @title Exercise 03: Blinn-Phong, a cosine lobe of the half vector around the normal
+// @formula f_r = kd / pi + ks * max(0, N.H)^ke,  H = normalize(L + V)
+// @source J. F. Blinn, "Models of Light Reflection for Computer Synthesized Pictures", SIGGRAPH 1977.
+// @param kd color 0.3 0.3 0.3 | diffuse albedo
+// @param ks color 0.5 0.5 0.5 | specular coefficient
+// @param ke float 1 1000 50 log | specular exponent: larger means a smaller, sharper highlight
+
+// Correct rewrite: a helper for the lobe, N.H = N.(L + V) / |L + V|.
+float blinn_lobe(vec3 N, vec3 L, vec3 V) {
+    vec3 sum = L + V;
+    float NoH = dot(N, sum) / length(sum);
+    return pow(clamp(NoH, 0.0, 1.0), ke);
+}
+
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    bool lit = dot(N, L) > 0.0 && dot(N, V) > 0.0;
+    return lit ? kd * INV_PI + ks * blinn_lobe(N, L, V) : vec3(0.0);
+}
