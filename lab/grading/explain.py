@@ -326,22 +326,32 @@ class Explainer:
         """The line where the student's values first part from the solution's, and how
         (lab.grading.localise), at the check's pairs or, for an image, pairs of its own;
         '' where the program cannot be traced or nothing stands out."""
-        if exercise.sampler_for or model.path is None:
+        path = model.sampler_path if exercise.sampler_for else model.path
+        if path is None:
             return ""
-        angles = kind_of(check).angles(check)
-        angles = trace.pairs() if angles is None else angles
+        if exercise.sampler_for:  # the sampler at random numbers u and views of its own
+            angles = trace.sampler_rows()
+        else:
+            angles = kind_of(check).angles(check)
+            angles = trace.pairs() if angles is None else angles
         try:
-            source = Path(model.path).read_text(encoding="utf-8")
+            source = Path(path).read_text(encoding="utf-8")
             mine = self._trace(exercise, model, check, angles, source)
             solution = self.grader.solution_model(exercise)
-            wanted = self._trace(exercise, solution, check, angles,
-                                 exercise.solution.read_text(encoding="utf-8"))
+            wanted = self._trace(
+                exercise, solution, check, angles, exercise.solution.read_text(encoding="utf-8")
+            )
         except (OSError, ShaderCompileError, ModelError, SubmissionError):
             return ""
         if mine is None or wanted is None:
             return ""
         finding = localise.locate(mine, wanted)
-        return localise.sentence(finding, source, label_of(model.path)) if finding else ""
+        said = localise.sentence(finding, source, label_of(path)) if finding else ""
+        if exercise.wrapper:  # a term exercise: the student's F, D or G beside the solution's
+            names = [f.split("(")[0].split()[-1] for f in exercise.functions]
+            rows = localise.term_rows(mine, wanted, names)
+            said = f"{said}. {rows[0].upper()}{rows[1:]}" if said and rows else said or rows
+        return said
 
     def _trace(self, exercise: Exercise, model: Model, check: Check, angles, source: str):
         """A program's trace at a check's settings, once per worker."""
@@ -349,7 +359,8 @@ class Explainer:
         if key not in self._traces:
             if len(self._traces) > 64:
                 self._traces.clear()
-            last = len(source.splitlines()) if exercise.wrapper else 1 << 30
+            wrapped = exercise.wrapper or exercise.sampler_for  # code after the student's
+            last = len(source.splitlines()) if wrapped else 1 << 30
             self._traces[key] = trace.run(self.grader.renderer, model, check.params, angles, last)
         return self._traces[key]
 

@@ -187,7 +187,8 @@ def _good(points: list[Point], right: dict[int, bool], ran: dict[int, bool]) -> 
     consumers: dict[int, list[int]] = {}
     for p in points:
         for d in p.deps:
-            consumers.setdefault(d, []).append(p.slot)
+            if d not in p.partial:
+                consumers.setdefault(d, []).append(p.slot)
     good: dict[int, bool] = {}
     for p in sorted(points, key=lambda p: -p.slot):
         good[p.slot] = (
@@ -244,7 +245,7 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     ]
     if not faults:
         return None
-    fault = min(faults, key=lambda p: (p.line, p.start))
+    fault = min(faults, key=lambda p: (student.step(p.slot), p.line, p.start))
     by_slot = {p.slot: p for p in points}
     # a * b * c is parsed (a * b) * c: a partial product the solution never forms is no
     # fault of its own, the whole chain is judged.
@@ -428,3 +429,55 @@ def sentence(finding: Finding, source: str, label: str) -> str:
         f"{where} (`{quoted}`) is where your values first part from the solution's{inside}: "
         "what it reads agrees, its result matches none of the solution's quantities"
     )
+
+
+def returned(trace: Trace, function: str) -> tuple[np.ndarray, np.ndarray] | None:
+    """What `function` returned at each pair (its last call there) and where it ran."""
+    values, ran = None, None
+    for point in trace.traced.points:
+        if point.function != function or not point.statement or point.name:
+            continue
+        v, r, _ = trace.value(point.slot)
+        if values is None:
+            values, ran = np.zeros_like(v), np.zeros(len(v), bool)
+        if v.shape != values.shape:
+            continue
+        values[r] = v[r]
+        ran |= r
+    return None if values is None else (values, ran)
+
+
+def _shown(values: np.ndarray) -> str:
+    if values.shape[-1] == 1:
+        return f"{float(values[0]):.4g}"
+    return "(" + ", ".join(f"{float(c):.4g}" for c in values) + ")"
+
+
+def term_rows(student: Trace, solution: Trace, functions: list[str]) -> str:
+    """For term exercises: where one of the student's functions (F, D, G) returns other
+    values than the solution's, its value and its arguments beside the solution's at the
+    pair where they differ most ('' where they agree)."""
+    out = []
+    for function in functions:
+        mine, want = returned(student, function), returned(solution, function)
+        if mine is None or want is None or mine[0].shape != want[0].shape:
+            continue
+        both = mine[1] & want[1]
+        wrong = both & ~agree(mine[0], want[0])
+        if not wrong.any():
+            continue
+        error = np.abs(mine[0] - want[0]).max(axis=-1) / (1e-4 + np.abs(want[0]).max(axis=-1))
+        row = int(np.flatnonzero(wrong)[np.argmax(error[wrong])])
+        args = []
+        for point in student.traced.points:
+            if point.function == function and point.head == "parameter":
+                v, r, _ = student.value(point.slot)
+                if r[row]:
+                    args.append(f"{point.name} = {_shown(v[row])}")
+        angles = ", ".join(f"{a:.1f}°" for a in student.angles[row])
+        out.append(
+            f"your {function}({', '.join(args)}) returns {_shown(mine[0][row])} where the "
+            f"solution's returns {_shown(want[0][row])} (at θi, φi, θo, φo = {angles}; "
+            f"{int(wrong.sum())} of {int(both.sum())} pairs differ)"
+        )
+    return "; ".join(out)

@@ -23,28 +23,36 @@ if TYPE_CHECKING:
     from lab.render import Renderer
 
 VIEW = "grade_trace"
+SAMPLER_VIEW = "grade_trace_sampler"
 MAX_SLOTS = 400  # rows of the trace image; a longer program is traced in part
 MAX_PAIRS = 1024  # columns: one texture row of direction pairs
 ARITHMETIC = {"+", "-", "*", "/"}
 
-# The recorder: one line, so that the file's line numbers stay its own.
-PRELUDE = " ".join(
-    [
-        "int lab_trace_slot = -1; vec4 lab_trace_value = vec4(0.0);",
-        *(
-            f"{t} lab_tr(int k, {t} v) {{ if (k == lab_trace_slot) "
-            f"lab_trace_value = {rec}; return v; }}"
-            for t, rec in (
-                ("float", "vec4(v, 0.0, 0.0, 1.0)"),
-                ("vec2", "vec4(v, 0.0, 2.0)"),
-                ("vec3", "vec4(v, 3.0)"),
-                ("vec4", "vec4(v.xyz, 4.0)"),
-                ("int", "vec4(float(v), 0.0, 0.0, 1.0)"),
-                ("bool", "vec4(v ? 1.0 : 0.0, 0.0, 0.0, 1.0)"),
-            )
-        ),
+
+def prelude(slots: int) -> str:
+    """The recorder, on one line so that the file's line numbers stay its own. Row k of the
+    trace view takes slot k's value; row slots + k the step at which slot k last ran (a
+    count of recorded values): the program's order of execution."""
+    records = [
+        ("float", "vec4(v, 0.0, 0.0, 1.0)"),
+        ("vec2", "vec4(v, 0.0, 2.0)"),
+        ("vec3", "vec4(v, 3.0)"),
+        ("vec4", "vec4(v.xyz, 4.0)"),
+        ("int", "vec4(float(v), 0.0, 0.0, 1.0)"),
+        ("bool", "vec4(v ? 1.0 : 0.0, 0.0, 0.0, 1.0)"),
     ]
-)
+    return " ".join(
+        [
+            "int lab_trace_slot = -1; vec4 lab_trace_value = vec4(0.0); int lab_trace_step = 0;",
+            *(
+                f"{t} lab_tr(int k, {t} v) {{ lab_trace_step += 1; "
+                f"if (k == lab_trace_slot) lab_trace_value = {rec}; "
+                f"if (k + {slots} == lab_trace_slot) "
+                "lab_trace_value = vec4(float(lab_trace_step), 0.0, 0.0, 1.0); return v; }"
+                for t, rec in records
+            ),
+        ]
+    )
 
 
 @dataclass
@@ -62,6 +70,7 @@ class Point:
     end: int = 0
     deps: list[int] = field(default_factory=list)  # slots whose values this one reads
     head: str = ""  # the operation: a called function's name or an operator
+    partial: list[int] = field(default_factory=list)  # deps read through a swizzle (h.z)
 
 
 @dataclass
@@ -224,6 +233,9 @@ class _Instrumenter:
             node = node.named_children[0]
         if node.type == "identifier":
             return self.defined.get(node.text.decode(), 0)
+        if node.type == "field_expression" and node.named_children:
+            # h.z reads one component of h: a right h.z does not vouch for all of h
+            return -abs(self.sub(node.named_children[0], statement))
         if not _is_value(node):
             deps = self._deps(node, statement)
             return deps[0] if len(deps) == 1 else 0
@@ -258,7 +270,8 @@ class _Instrumenter:
                 name=name,
                 start=node.start_byte,
                 end=node.end_byte,
-                deps=[d for d in deps if d],
+                deps=[abs(d) for d in deps if d],
+                partial=[-d for d in deps if d < 0],
                 head=_head(node),
             )
         )
@@ -300,7 +313,7 @@ def instrument(code: str, last_line: int = 1 << 30) -> Traced:
     body = walker.emit(tree.root_node)
     # Keep whatever precedes the tree's root (nothing, usually) and put the recorder
     # on the first line with the file's own first line.
-    return Traced(PRELUDE + " " + body, walker.points)
+    return Traced(prelude(len(walker.points)) + " " + body, walker.points)
 
 
 @dataclass
@@ -320,36 +333,61 @@ class Trace:
         count = min(max(count, 1), 3)
         return raw[:, :count].astype(np.float64), ran, count
 
+    def step(self, slot: int) -> float:
+        """When slot ran, in the program's order (median over the pairs; inf if never)."""
+        raw = self.values[len(self.traced.points) + slot]
+        ran = raw[:, 3] > 0.5
+        return float(np.median(raw[ran, 0])) if ran.any() else math.inf
+
 
 def run(
     renderer: Renderer, model: Model, values: dict, angles_deg: np.ndarray, last_line: int = 1 << 30
 ) -> Trace | None:
     """Trace `model` at direction pairs (theta_i, phi_i, theta_o, phi_o in degrees); None
-    where its code cannot be parsed or instrumented code does not compile."""
+    where its code cannot be parsed or instrumented code does not compile.
+
+    A sampling exercise's model (one with `sampler_code`) is traced in its sampler: the
+    first two columns of a row are then the random numbers u, not angles."""
     import moderngl
 
     from lab.glsl import ShaderCompileError
 
+    sampler = getattr(model, "sampler_code", None)
+    view = VIEW if sampler is None else SAMPLER_VIEW
     try:
-        traced = instrument(model.code, last_line)
+        traced = instrument(model.code if sampler is None else sampler, last_line)
     except (ImportError, RecursionError, UnicodeError):
         return None
+    instrumented = replace(model, code=traced.code)
+    if sampler is not None:  # the sampler alone, with the library's frame helpers
+        instrumented.includes = ["terms/sampling.glsl"]
+        instrumented.sampler_code = None
     angles = np.asarray(angles_deg, np.float64).reshape(-1, 4)[:MAX_PAIRS]
-    rows = len(traced.points) + 1
+    data = np.radians(angles)
+    if sampler is not None:
+        data[:, :2] = angles[:, :2]
+    rows = 2 * len(traced.points) + 1
     texture = renderer.ctx.texture(
-        (len(angles), 1), 4, np.radians(angles).astype(np.float32).tobytes(), dtype="f4"
+        (len(angles), 1), 4, data.astype(np.float32).tobytes(), dtype="f4"
     )
     texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
     try:
         texture.use(0)
-        instrumented = replace(model, code=traced.code)
-        fbo = renderer._run(instrumented, VIEW, values, (len(angles), rows), {"u_angles": 0})
+        fbo = renderer._run(instrumented, view, values, (len(angles), rows), {"u_angles": 0})
         data = np.frombuffer(fbo.read(components=4, dtype="f4"), np.float32)
     except (ShaderCompileError, moderngl.Error):
         return None
     finally:
         texture.release()
     return Trace(traced, data.reshape(rows, len(angles), 4).copy(), angles)
+
+
+def sampler_rows(seed: int = 11, n: int = 256) -> np.ndarray:
+    """Rows (u.x, u.y, theta_o, phi_o) for tracing a sampler: random numbers over the unit
+    square, views from the normal to near grazing."""
+    rng = np.random.default_rng(seed)
+    theta_o = np.degrees(np.arccos(rng.uniform(0.1, 1.0, n)))
+    return np.stack([rng.random(n), rng.random(n), theta_o, rng.uniform(0, 360, n)], axis=1)
 
 
 def pairs(seed: int = 7, n: int = 192) -> np.ndarray:
