@@ -24,10 +24,12 @@ def floats_b64(array: np.ndarray) -> str:
 # float32 rounds a cosine near +-1 by about 1e-7, which is an angle of sqrt(2e-7) = DELTA
 # (L + V nearly 0, N.H near 1: a rewrite's H or N.H can be that far off). Elsewhere the
 # first-order change is scaled to FIRST radians, the angle error of float32 directions with
-# a wide margin. The tolerance of a row is the check's, or GROW times that estimate.
+# a wide margin. The tolerance of a row is the check's, or GROW times that estimate, or
+# ROUNDING times the solution's own float32 error against the float64 reference there.
 DELTA = 4.5e-4
 FIRST = 1e-5
 GROW = 4.0
+ROUNDING = 2.0
 TRIALS = 6
 
 
@@ -36,9 +38,10 @@ def _frozen(value):
 
 
 @functools.lru_cache(maxsize=128)
-def _spread(model: str, params: tuple, angles: bytes, n: int) -> np.ndarray | None:
-    """(n, 3) float32 error a correct float32 program may make at each row, or None where
-    lab.reference has no such model (then the check's own tolerance stands)."""
+def _spread(model: str, params: tuple, angles: bytes, n: int) -> tuple | None:
+    """(n, 3) float32 error a correct float32 program may make at each row and the float64
+    values there, or None where lab.reference has no such model (then the check's own
+    tolerance stands)."""
     from lab import reference
 
     rows = np.frombuffer(angles, dtype=np.float64).reshape(n, 4)
@@ -66,9 +69,9 @@ def _spread(model: str, params: tuple, angles: bytes, n: int) -> np.ndarray | No
     # A row below the horizon is 0 for every correct program; one moved across the horizon
     # by DELTA (within a hundredth of a degree of it) says nothing about the formula.
     spread[below] = 0.0
-    out = (GROW * spread).astype(np.float32)
-    out.flags.writeable = False
-    return out
+    spread *= GROW
+    spread.flags.writeable = base.flags.writeable = False
+    return spread, base
 
 
 def normalize(v: np.ndarray) -> np.ndarray:
@@ -84,11 +87,14 @@ def row_tolerance(check: Check, angles: np.ndarray, expected: np.ndarray) -> np.
     params = {**check.defaults, **check.params}
     key = tuple(sorted((k, _frozen(v)) for k, v in params.items()))
     rows = np.ascontiguousarray(angles, dtype=np.float64)
-    spread = _spread(check.model, key, rows.tobytes(), len(rows))
-    if spread is None or spread.shape != expected.shape[:1] + (3,):
+    found = _spread(check.model, key, rows.tobytes(), len(rows))
+    if found is None or found[0].shape != expected.shape[:1] + (3,):
         return None
+    spread, exact = found
     plain = check.atol + check.rtol * np.abs(expected[:, :3])
-    return np.maximum(plain, spread)
+    with np.errstate(invalid="ignore"):
+        rounding = ROUNDING * np.nan_to_num(np.abs(expected[:, :3] - exact))
+    return np.maximum(np.maximum(plain, spread), rounding).astype(np.float32)
 
 
 class ValueKind(CheckKind):
