@@ -66,7 +66,10 @@ def test_the_chi_square_names_the_wrong_half(grader, tmp_path):
     )
     chi = sampler["chi_square.glossy"]
     assert not chi.passed and "the sampler is what is wrong" in chi.diagnosis, chi.message
-    assert sampler["pdf_integral.views"].passed  # the pdf itself is right
+    # The pdf is the solution's, but not the density of this sampler's draws: more of them
+    # fail (a wider lobe of half vectors), so the integral misses their share.
+    integral = sampler["pdf_integral.views"]
+    assert not integral.passed and "the pdf does not describe the sampler" in integral.message
     assert set(chi.images) == {"your pdf", "your samples", "solution's pdf"}
 
 
@@ -88,11 +91,9 @@ def test_an_endless_loop_in_the_sampler_is_named_not_graded(grader, tmp_path):
     )
     line = path.read_text().splitlines().index("    while (x < 2.0) { x += 1e-30 * x; }") + 1
     results = grade(grader, path)
-    for name in ("chi_square.glossy", "chi_square.rough", "ibl_render.grey_room"):
-        result = results[name]
+    for name, result in results.items():  # every check runs the sampler (pdf_integral too)
         assert result.points == 0 and result.loop_line == line, (name, result.message)
         assert f"{path.name}:{line}: the loop at line {line} did not end" in result.message
-    assert results["pdf_integral.views"].passed  # the pdf runs no loop
     assert all(r.passed for r in grade(grader, EXERCISE.solution).values())  # nothing sticks
 
 
@@ -101,12 +102,12 @@ def test_an_endless_loop_in_the_sampler_is_named_not_graded(grader, tmp_path):
     [
         ("views = [[10.0, 0.0], [70.0, 130.0]]", "views = [[95.0, 0.0]]", "0 <= theta < 90"),
         (
-            'samples = 100000\nalpha = 0.01\n\n[[checks]]\nname = "chi_square.rough"',
-            'samples = 10\nalpha = 0.01\n\n[[checks]]\nname = "chi_square.rough"',
+            'samples = 100000\nalpha = 0.002\n\n[[checks]]\nname = "chi_square.rough"',
+            'samples = 10\nalpha = 0.002\n\n[[checks]]\nname = "chi_square.rough"',
             "samples must",
         ),
         ('environment = "grey_room"', 'environment = "moon"', "is not one of"),
-        ("tolerance = 0.01", 'tolerance = "small"', "should be a number"),
+        ("tolerance = 0.005", 'tolerance = "small"', "should be a number"),
     ],
 )
 def test_a_broken_check_table_is_reported(tmp_path, old, new, words):

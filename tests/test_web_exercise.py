@@ -208,8 +208,9 @@ def shape(message: str) -> str:
 @pytest.mark.parametrize("slip", [None, *SAMPLER_SLIPS])
 def test_sampling_checks_give_the_graders_verdicts(page, tmp_path, slip):
     """Exercise 10's checks run in the page (the grader's directions, random numbers,
-    quadrature and render seeds) with the grader's verdicts and messages, its likely
-    mistake included: chi-square, pdf integral and the IBL render at equal samples."""
+    quadrature and second draws) with the grader's verdicts and messages, its likely
+    mistake included: chi-square and pdf integral. The IBL render's z-test and noise ratio
+    are the grader's alone: the page names that check as one only the grader runs."""
     text = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text()
     if slip:
         assert slip[0] in text
@@ -218,12 +219,12 @@ def test_sampling_checks_give_the_graders_verdicts(page, tmp_path, slip):
     path.write_text(text)
     graded = grade(SAMPLER, path, tmp_path)
     web = sampling_practice(page, text)
-    assert set(web) == set(graded)  # every check of the exercise runs in the page
+    assert set(web) == set(graded) - {"ibl_render.grey_room"}  # the others run in the page
     for name, (passed, message) in web.items():
         assert passed == graded[name][0], (name, message, graded[name][1])
         assert shape(message) == shape(graded[name][1]), (name, message, graded[name][1])
     assert (slip is None) == all(passed for passed, _ in web.values())
-    assert "only the grader runs" not in page.locator("#exercise").inner_text()
+    assert "only the grader runs" in page.locator("#exercise").inner_text()
     assert page.errors == []
 
 
@@ -231,10 +232,10 @@ def test_sampling_checks_wait_for_the_button_and_name_compile_errors(page, tmp_p
     solution = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text()
     practice(page, SAMPLER, solution)
     pending = page.locator("#exercise li.pending")
-    assert pending.count() == 4  # typing does not run seconds of sampling
+    assert pending.count() == 3  # typing does not run seconds of sampling
     page.locator("#exercise button.run-sampling").click()
     page.wait_for_function("document.querySelectorAll('#exercise li.pending').length === 0")
-    assert page.locator("#exercise li.pass").count() == 4
+    assert page.locator("#exercise li.pass").count() == 3
     # The grader's pictures: a correct sampler's histogram looks like its pdf's.
     figures = page.locator('#exercise .exercise-images[data-check="chi_square.glossy"] canvas')
     assert figures.count() == 3
@@ -245,8 +246,6 @@ def test_sampling_checks_wait_for_the_button_and_name_compile_errors(page, tmp_p
     pdf, samples, theirs = (np.array(p, float).reshape(-1, 4)[:, :3] for p in pixels)
     assert pdf.max() > 200 and np.abs(pdf - samples).mean() < 8
     np.testing.assert_allclose(pdf, theirs, atol=2)  # the solution's pdf: the same
-    renders = page.locator('#exercise .exercise-images[data-check="ibl_render.grey_room"] canvas')
-    assert renders.count() == 4
     # A mistake the compiler finds: the grader's file and line, on every check.
     lines = solution.splitlines()
     line = next(i for i, t in enumerate(lines, 1) if "float pdf_lobe" in t)

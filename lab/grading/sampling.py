@@ -15,16 +15,18 @@ Each `*_raw` function returns one float array (what the references store); each
 
 from __future__ import annotations
 
+import hashlib
 import math
+from statistics import NormalDist
 
 import numpy as np
 
 from lab.constants import LUMA
 from lab.ibl import chisquare
-from lab.ibl.integrator import Environment, IBLRenderer, Progressive, local_view
+from lab.ibl.integrator import Environment, IBLRenderer, Progressive, local_view, sampler_text
 
 BINS = chisquare.THETA_BINS * chisquare.PHI_BINS
-EXTRA = 3  # per view after the two histograms: failed, not unit, not finite
+EXTRA = 4  # per view after the two histograms: failed, not unit, not finite, draw
 _ENVIRONMENTS: dict[str, Environment] = {}
 
 
@@ -70,8 +72,14 @@ def fingerprint(renderer, model, params, seed: int) -> np.ndarray:
 
 
 # -- chi-square -------------------------------------------------------------------------------
-def chi_square_raw(renderer, model, params, views, samples: int, seed: int) -> np.ndarray:
-    """(views, 2 * BINS + EXTRA): observed counts, expected counts, failure counts."""
+REDRAW = 1_000_003  # seed offset of the chi-square's second, independent draw
+DECISIVE = 1e-7  # a first draw this improbable (per view) fails without a second one
+COLUMNS = 2 * BINS + EXTRA  # per view: observed, expected, then failed, not unit, not
+# finite, and which draw the row comes from (0 the first, 1 the second)
+
+
+def chi_square_draw(renderer, model, params, views, samples: int, seed: int) -> np.ndarray:
+    """(views, COLUMNS): observed counts, expected counts, failure counts of one draw."""
     ibl = ibl_renderer(renderer)
     rows = []
     for index, (theta, phi) in enumerate(views):
@@ -85,9 +93,26 @@ def chi_square_raw(renderer, model, params, views, samples: int, seed: int) -> n
         valid = unit & (pdf > 0.0)
         observed = chisquare.histogram(L[valid] / length[valid, None])
         expected = chisquare.bin_probabilities(ibl, model, params, V, frame=frame) * samples
-        counts = [samples - valid.sum(), samples - unit.sum(), samples - finite.sum()]
+        counts = [samples - valid.sum(), samples - unit.sum(), samples - finite.sum(), 0]
         rows.append(np.concatenate([observed.ravel(), expected.ravel(), counts]))
     return np.array(rows, dtype=np.float64)
+
+
+def chi_square_raw(
+    renderer, model, params, views, samples: int, seed: int, alpha: float = 0.002
+) -> np.ndarray:
+    """The draw the verdict rests on: the first, unless it fails the test at `alpha`
+    without being decisive (p < DECISIVE, or samples that are broken whatever the
+    chance): then a second, independent draw of as many samples (its rows say draw 1).
+    A correct sampler then fails only when two independent draws both fail, with
+    probability about alpha squared."""
+    first = chi_square_draw(renderer, model, params, views, samples, seed)
+    verdicts = chi_square_views(first, views, samples, alpha)
+    if all(v is None or v[1] for v in verdicts):
+        return first  # passed, or failed beyond chance
+    second = chi_square_draw(renderer, model, params, views, samples, seed + REDRAW)
+    second[:, -1] = 1.0
+    return second
 
 
 def _split(row: np.ndarray):
@@ -103,41 +128,68 @@ def _bin_words(index: int) -> str:
     return f"θ {t0:.0f}–{t1:.0f}°, φ {p0:.0f}–{p0 + 360.0 / chisquare.PHI_BINS:.0f}°"
 
 
-def judge_chi_square(raw, views, samples: int, alpha: float) -> tuple[bool, str, int]:
-    """Pearson's test per view at Šidák's level; the first failing view's story."""
+def chi_square_views(raw, views, samples: int, alpha: float) -> list[tuple[str, bool] | None]:
+    """Per view: None where it passes, else (what is wrong, decisive): decisive failures
+    are broken samples or p < DECISIVE, which no second draw could undo."""
     level = chisquare.sidak(alpha, len(views))
-    worst, lines = -1, []
-    for index, ((theta, phi), row) in enumerate(zip(views, raw, strict=True)):
-        observed, expected, (failed, not_unit, not_finite) = _split(row)
+    out: list[tuple[str, bool] | None] = []
+    for (theta, phi), row in zip(views, raw, strict=True):
+        observed, expected, (failed, not_unit, not_finite, _) = _split(row)
         where = f"view θ = {theta:.0f}°, φ = {phi:.0f}°"
         if not_finite:
-            lines.append(f"{where}: {int(not_finite)} of {samples} samples are NaN or infinite")
+            out.append(
+                (f"{where}: {int(not_finite)} of {samples} samples are NaN or infinite", True)
+            )
         elif not_unit > 0.001 * samples:
-            lines.append(
-                f"{where}: {int(not_unit)} of {samples} sampled directions are not unit "
-                "vectors (a direction built from sin and cos has length 1)"
+            out.append(
+                (
+                    f"{where}: {int(not_unit)} of {samples} sampled directions are not unit "
+                    "vectors (a direction built from sin and cos has length 1)",
+                    True,
+                )
             )
         elif expected.sum() < 0.5 * samples:
-            lines.append(
-                f"{where}: your pdf integrates to {expected.sum() / samples:.3f} over the sphere, "
-                "so it cannot describe your samples (see the pdf_integral check)"
+            out.append(
+                (
+                    f"{where}: your pdf integrates to {expected.sum() / samples:.3f} over the "
+                    "sphere, so it cannot describe your samples (see the pdf_integral check)",
+                    True,
+                )
             )
         else:
             stat, dof, p = chisquare.pearson(observed, expected, failed, samples - expected.sum())
             if p >= level:
+                out.append(None)
                 continue
             off = np.argmax((observed - expected) ** 2 / np.maximum(expected, 1.0))
-            lines.append(
-                f"{where}: the samples do not follow your pdf (χ² = {stat:.0f} for {dof} "
-                f"degrees of freedom, p = {p:.2g} < {level:.2g}); most off: "
-                f"{_bin_words(int(off))} holds {int(observed[off])} samples where the pdf "
-                f"expects {expected[off]:.0f}"
+            out.append(
+                (
+                    f"{where}: the samples do not follow your pdf (χ² = {stat:.0f} for {dof} "
+                    f"degrees of freedom, p = {p:.2g} < {level:.2g}); most off: "
+                    f"{_bin_words(int(off))} holds {int(observed[off])} samples where the pdf "
+                    f"expects {expected[off]:.0f}",
+                    p < DECISIVE,
+                )
             )
-        worst = index if worst < 0 else worst
+    return out
+
+
+def judge_chi_square(raw, views, samples: int, alpha: float) -> tuple[bool, str, int]:
+    """Pearson's test per view at Šidák's level, on the draw chi_square_raw kept; the
+    first failing view's story."""
+    verdicts = chi_square_views(raw, views, samples, alpha)
+    lines = [v[0] for v in verdicts if v is not None]
     if lines:
+        worst = next(i for i, v in enumerate(verdicts) if v is not None)
         more = len(lines) - 1
         tail = f" (and {more} more view{'s' if more > 1 else ''} fail)" if more else ""
-        return False, lines[0] + tail, worst
+        again = (
+            "; a second, independent draw failed as the first did"
+            if raw.shape[1] == COLUMNS and raw[:, -1].max() > 0
+            else ""
+        )
+        return False, lines[0] + tail + again, worst
+    level = chisquare.sidak(alpha, len(views))
     tested = ", ".join(f"{t:.0f}°" for t, _ in views)
     return True, f"samples follow the pdf at every view (θ = {tested}; p ≥ {level:.2g})", -1
 
@@ -169,93 +221,202 @@ def histogram_image(counts: np.ndarray, peak: float, scale: int = 6) -> np.ndarr
 
 
 # -- the pdf integral ------------------------------------------------------------------------------
-def pdf_integral_raw(renderer, model, params, views, seed: int) -> np.ndarray:
-    """(views,): the pdf integrated over the sphere, per view (frames as chi_square's)."""
+USABLE = 0.5  # a sampler must give a usable direction (pdf > 0) at least this often
+Z_INTEGRAL = 5.0  # the failed share's noise allowed: P(|z| > 5) = 5.7e-7 per view
+
+
+def pdf_integral_raw(renderer, model, params, views, seed: int, samples: int) -> np.ndarray:
+    """(views, 2): the pdf integrated over the sphere (quadrature, frames as chi_square's)
+    and the share of `samples` of the sampler's own draws that fail (pdf 0 where they
+    land, not a unit vector, or not finite), per view."""
     ibl = ibl_renderer(renderer)
     out = []
     for index, (theta, phi) in enumerate(views):
         frame = chisquare.random_frame(seed * 31 + index)
         V = chisquare.view_direction(theta, phi)
-        out.append(chisquare.bin_probabilities(ibl, model, params, V, frame=frame).sum())
+        integral = chisquare.bin_probabilities(ibl, model, params, V, frame=frame).sum()
+        drawn = ibl.brdf_samples(model, params, np.repeat(V[None], samples, 0), seed + index, frame)
+        finite = np.isfinite(drawn).all(axis=1)
+        length = np.linalg.norm(np.where(finite[:, None], drawn[:, :3], 0.0), axis=1)
+        valid = finite & (np.abs(length - 1.0) < 1e-3) & (drawn[:, 3] > 0.0)
+        out.append((integral, 1.0 - valid.mean()))
     return np.array(out, dtype=np.float64)
 
 
-def judge_pdf_integral(raw, reference, views, tolerance: float) -> tuple[bool, str, int]:
-    raw = np.nan_to_num(np.asarray(raw, np.float64), nan=np.inf)
-    off = np.abs(raw - reference)
-    if (off <= tolerance).all():
-        values = ", ".join(f"{v:.4f}" for v in raw)
-        return True, f"the pdf integrates to {values} over the sphere, as it should", -1
-    worst = int(np.argmax(off))
+def integral_allowed(failed: float, samples: int, tolerance: float) -> float:
+    """How far the integral may lie from 1 - failed: the quadrature's `tolerance` and
+    Z_INTEGRAL standard errors of the failed share measured from `samples` draws."""
+    share = min(max(failed, 1.0 / samples), 1.0 - 1.0 / samples)
+    return tolerance + Z_INTEGRAL * math.sqrt(share * (1.0 - share) / samples)
+
+
+def judge_pdf_integral(raw, views, samples: int, tolerance: float) -> tuple[bool, str, int]:
+    """The pdf is the density of what the sampler draws: over the sphere it integrates to
+    the share of draws that land somewhere (1 less those that fail), whatever that share
+    is; the solution's share plays no part."""
+    raw = np.nan_to_num(np.asarray(raw, np.float64).reshape(len(views), 2), nan=np.inf)
+    integrals, failed = raw[:, 0], raw[:, 1]
+    allowed = np.array([integral_allowed(f, samples, tolerance) for f in failed])
+    off = np.abs(integrals - (1.0 - failed))
+    usable = 1.0 - failed >= USABLE
+    if (off <= allowed).all() and usable.all():
+        values = ", ".join(f"{v:.4f}" for v in integrals)
+        wasted = ", ".join(f"{100 * f:.1f}%" for f in failed)
+        return (
+            True,
+            f"the pdf integrates to {values} over the sphere: 1 less the samples that fail "
+            f"({wasted}), as a density of what your sampler draws should",
+            -1,
+        )
+    worst = int(np.argmin(usable)) if not usable.all() else int(np.argmax(off - allowed))
     theta, phi = views[worst]
+    where = f"at the view θ = {theta:.0f}°, φ = {phi:.0f}°"
+    if not usable[worst]:
+        return (
+            False,
+            f"{where} {100 * failed[worst]:.1f}% of your samples fail (pdf 0 where they land, "
+            f"or not a unit vector): a sampler must give a usable direction at least "
+            f"{100 * USABLE:.0f}% of the time",
+            worst,
+        )
     return (
         False,
-        f"at the view θ = {theta:.0f}°, φ = {phi:.0f}° your pdf integrates to "
-        f"{raw[worst]:.4f} over the sphere, the solution's to {reference[worst]:.4f} (1 less "
-        f"the samples whose half vector faces away from V); allowed ±{tolerance:g}",
+        f"{where} your pdf integrates to {integrals[worst]:.4f} over the sphere, but "
+        f"{100 * failed[worst]:.1f}% of your samples fail, so the density of what your "
+        f"sampler draws integrates to {1.0 - failed[worst]:.4f} (allowed ±"
+        f"{allowed[worst]:.3f}): the pdf does not describe the sampler",
         worst,
     )
 
 
 # -- the render at equal samples ---------------------------------------------------------
+Z_GROUPS = 8  # rings of equal view angle tested for bias, and the whole sphere besides
+
+
 def environment(name: str) -> Environment:
     if name not in _ENVIRONMENTS:
         _ENVIRONMENTS[name] = Environment.load(name)
     return _ENVIRONMENTS[name]
 
 
+def program_seed(model, seed: int) -> int:
+    """The check's seed salted with the sampler's text: a program other than the
+    solution never replays the random numbers of the reference (a sampler that maps them
+    differently would be compared with a correlated copy of its own noise)."""
+    text = sampler_text(model) or ""
+    salt = int.from_bytes(hashlib.sha1(text.encode()).digest()[:3], "little")
+    return (seed + salt) % (1 << 30)
+
+
 def render_raw(
-    renderer, model, params, env: str, size: int, samples: int, converged: int, seed: int
+    renderer, model, params, env: str, size: int, samples: int, passes: int, seed: int
 ) -> np.ndarray:
-    """(2, size, size, 4): the sphere with the model's sampler alone at `samples` per pixel,
-    and the same estimator run to `converged` samples (what it converges to)."""
+    """(3, size, size, 3) float32: one pass of `samples` per pixel (RGB), the mean of
+    `passes` independent such passes (RGB), and in channel 0 of the third the sample
+    variance of the passes' luminance per pixel (the estimator's own noise)."""
     ibl = ibl_renderer(renderer)
-    out = []
-    for count, offset in ((samples, 0), (converged, 1000)):
-        job = Progressive(ibl, model, params, environment(env), "brdf", size, 0.0, seed + offset)
-        try:
-            out.append(job.run(count, spp=min(count, 256)).image())
-        finally:
-            job.release()
-    return np.stack(out).astype(np.float32)
+    seed = program_seed(model, seed)
+    job = Progressive(ibl, model, params, environment(env), "brdf", size, 0.0, seed)
+    luma = np.array(LUMA)
+    try:
+        total = first = np.zeros((size, size, 3))
+        lum = []
+        for _ in range(passes):
+            job.add(samples)
+            running = job.image()[..., :3].astype(np.float64) * job.samples
+            one = (running - total) / samples
+            total = running
+            lum.append(one @ luma)
+            first = one if len(lum) == 1 else first  # the picture of one pass
+    finally:
+        job.release()
+    variance = np.zeros((size, size, 3))
+    variance[..., 0] = np.var(np.array(lum), axis=0, ddof=1)
+    return np.stack([first, total / (samples * passes), variance]).astype(np.float32)
 
 
 def _sphere(size: int) -> np.ndarray:
     return local_view(size)[2]
 
 
-def relative_rms(image: np.ndarray, reference: np.ndarray, mask: np.ndarray) -> float:
-    """RMS of the luminance difference over the sphere, relative to the mean luminance."""
-    lum = np.nan_to_num(image[..., :3], nan=1e9, posinf=1e9, neginf=-1e9) @ np.array(LUMA)
-    ref = reference[..., :3] @ np.array(LUMA)
-    scale = max(float(ref[mask].mean()), 1e-9)
-    return float(np.sqrt(np.mean((lum[mask] - ref[mask]) ** 2)) / scale)
+def _luminance(image: np.ndarray) -> np.ndarray:
+    return image[..., :3].astype(np.float64) @ np.array(LUMA)
 
 
-def judge_render(raw, reference, samples: int, factor: float, bias: float) -> tuple[bool, str]:
-    """Error at equal samples no more than `factor` times the solution's (relative RMS over
-    the sphere), and the estimator's limit within `bias` of the solution's in every ring of
-    equal view angle (ring means: the noise of single pixels averages out)."""
-    raw = raw.astype(np.float32)
-    reference = reference.astype(np.float32)
+def z_limit(alpha: float, tests: int) -> float:
+    """|z| beyond which one of `tests` two-sided z-tests fails a correct estimator with
+    probability at most `alpha` in all (Bonferroni)."""
+    return NormalDist().inv_cdf(1.0 - alpha / (2.0 * tests))
+
+
+def bias_z(raw: np.ndarray, reference: np.ndarray, passes: int) -> tuple[np.ndarray, list]:
+    """z of the difference of the two estimators' means, per ring of equal view angle and
+    over the whole sphere, with both estimators' own variances (from their passes)."""
+    theta, _, mask = local_view(raw.shape[1])
+    d = _luminance(raw[1]) - _luminance(reference[1])
+    v = (raw[2][..., 0].astype(np.float64) + reference[2][..., 0]) / passes
+    ring = np.minimum((theta / 90.0 * Z_GROUPS).astype(int), Z_GROUPS - 1)
+    groups = [
+        (mask & (ring == r), f"ring θ {90 * r / Z_GROUPS:.0f}–{90 * (r + 1) / Z_GROUPS:.0f}°")
+        for r in range(Z_GROUPS)
+    ] + [(mask, "whole sphere")]
+    groups = [(g, name) for g, name in groups if g.any()]
+    ref = _luminance(reference[1])
+    z = np.array([d[g].sum() / math.sqrt(max(v[g].sum(), 1e-30)) for g, _ in groups])
+    words = [(name, d[g].mean() / max(abs(ref[g].mean()), 1e-12)) for g, name in groups]
+    return z, words
+
+
+def render_errors(raw, reference, passes: int) -> tuple[float, float]:
+    """Relative RMS error of one pass against the truth, the student's and the solution's:
+    the student's from its squared distance to the reference's mean, less the reference's
+    own noise (an unbiased estimate); the solution's from its variance (it is unbiased)."""
     mask = _sphere(raw.shape[1])
-    pixels = raw[:, mask, :3]
-    if not np.isfinite(pixels).all() or (pixels < 0).any():
-        n = int((~np.isfinite(pixels) | (pixels < 0)).any(axis=-1).any(axis=0).sum())
-        return False, f"{n} pixels of the sphere are NaN, infinite or negative"
-    mine = relative_rms(raw[0], reference[1], mask)
-    theirs = relative_rms(reference[0], reference[1], mask)
-    limit = ring_deviation(raw[1], reference[1])
-    text = (
-        f"at {samples} samples per pixel your render is {100 * mine:.1f}% RMS off the converged "
-        f"reference, the solution's {100 * theirs:.1f}% (allowed {factor:g}×); your estimator "
-        f"converges to within {100 * limit:.1f}% of it (allowed {100 * bias:g}%)"
+    d = (_luminance(raw[1]) - _luminance(reference[1]))[mask]
+    mine_var = raw[2][..., 0][mask].astype(np.float64)
+    ref_var = reference[2][..., 0][mask].astype(np.float64)
+    mine = np.mean(mine_var * (1.0 - 1.0 / passes) + d * d - ref_var / passes)
+    scale = max(float(_luminance(reference[1])[mask].mean()), 1e-12)
+    return math.sqrt(max(mine, 0.0)) / scale, math.sqrt(float(ref_var.mean())) / scale
+
+
+def judge_render(
+    raw, reference, samples: int, passes: int, factor: float, alpha: float
+) -> tuple[bool, str]:
+    """No bias (a z-test per ring and over the sphere against the reference, with both
+    estimators' own noise, at `alpha` for all tests together) and, at `samples` per pixel,
+    no more than `factor` times the solution's RMS error: importance sampling is what
+    buys that."""
+    if reference is None or np.shape(reference) != np.shape(raw) or raw.shape[0] != 3:
+        return False, "the reference does not fit this check (instructor: --make-references)"
+    raw = raw.astype(np.float32)
+    pixels = raw[:, _sphere(raw.shape[1])]
+    bad = (~np.isfinite(pixels) | (pixels < 0)).any(axis=-1).any(axis=0)
+    if bad.any():
+        return False, f"{int(bad.sum())} pixels of the sphere are NaN, infinite or negative"
+    mine, theirs = render_errors(raw, reference, passes)
+    z, words = bias_z(raw, reference, passes)
+    limit = z_limit(alpha, len(z))
+    worst = int(np.argmax(np.abs(z)))
+    noise = (
+        f"at {samples} samples per pixel your render is {100 * mine:.1f}% RMS off the "
+        f"converged reference, the solution's {100 * theirs:.1f}% (allowed {factor:g}×)"
     )
-    if limit > bias:
-        return False, text + ": it is biased — the pdf does not match what the sampler draws"
+    name, rel = words[worst]
+    if abs(z[worst]) > limit:
+        return False, (
+            f"over {samples * passes} samples per pixel your estimator converges to another "
+            f"image: in the {name} its mean is {100 * rel:+.1f}% off the reference's (z = "
+            f"{z[worst]:.1f}, allowed |z| ≤ {limit:.1f} for noise like yours); {noise}: it is "
+            "biased — the pdf does not match what the sampler draws"
+        )
     if mine > factor * theirs:
-        return False, text + ": more noise than the solution's sampler"
-    return True, text
+        return False, (
+            f"{noise}: {mine / max(theirs, 1e-12):.1f}× the solution's noise; it converges to "
+            "the right image, but a sampler shaped like the lobe gets there with far fewer "
+            "samples"
+        )
+    return True, f"{noise}; no bias (largest |z| {abs(z[worst]):.1f} ≤ {limit:.1f})"
 
 
 RINGS = 16
