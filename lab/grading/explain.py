@@ -8,7 +8,7 @@ Nothing matches: nothing is said.
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -179,6 +179,17 @@ def _variant_model(exercise: Exercise, variant: mistakes.Variant, solution: str)
 
 
 # -- grading: explain one failed check ------------------------------------------------------
+@dataclass
+class Located:
+    """What the traces say about a failed check (lab.grading.localise)."""
+
+    text: str = ""
+    finding: localise.Finding | None = None
+    solution: trace.Trace | None = None
+    angles: np.ndarray | None = None
+    exit: bool = False  # the difference is a missing early exit
+
+
 class Explainer:
     """Per worker: the stored variant values and the live-rendered variants, cached."""
 
@@ -315,20 +326,47 @@ class Explainer:
         else:
             candidates = {k: v for k, v in self.candidates(exercise, check).items() if k in hints}
             key = kind.nearest(check, got, expected, candidates)
-        where = self.locate(exercise, check, model)
-        if key in hints:
+        located = self.locate(exercise, check, model)
+        where = located.text
+        if located.exit:  # stronger than any stored hint
+            return diagnosis.sentence(where)
+        if key in hints and self.consistent(exercise, check, key, located):
             return diagnosis.sentence(hints[key]) + (f" Where: {where}." if where else "")
         if where:
             return f"Where: {where}."
+        if key in hints:  # a hint the trace contradicts is left unsaid
+            return ""
         return diagnosis.sentence(kind.explain(self, exercise, check, model, expected, got, live))
 
-    def locate(self, exercise: Exercise, check: Check, model: Model) -> str:
+    def consistent(self, exercise: Exercise, check: Check, key: str, located: Located) -> bool:
+        """Does the likely wrong program whose values the student's match go wrong at the
+        same quantity as the student's (a variable of the same name, or the same function's
+        result)? True where either cannot tell: a stored hint stays unless the trace
+        contradicts it."""
+        if located.finding is None or located.solution is None or key == mistakes.STUB:
+            return True
+        variant = next((v for v in self.variants(exercise) if v.key == key), None)
+        model = self.variant_model(exercise, variant) if variant is not None else None
+        if model is None:
+            return True
+        solution_text = exercise.solution.read_text(encoding="utf-8")
+        theirs = self._trace(exercise, model, check, located.angles, solution_text)
+        if theirs is None:
+            return True
+        if localise.early_exit(theirs, located.solution):
+            return False  # the variant's difference is a missing exit, the student's is not
+        other = localise.locate(theirs, located.solution)
+        if other is None:
+            return True
+        return localise.target(other) == localise.target(located.finding)
+
+    def locate(self, exercise: Exercise, check: Check, model: Model) -> Located:
         """The line where the student's values first part from the solution's, and how
         (lab.grading.localise), at the check's pairs or, for an image, pairs of its own;
-        '' where the program cannot be traced or nothing stands out."""
+        an empty text where the program cannot be traced or nothing stands out."""
         path = model.sampler_path if exercise.sampler_for else model.path
         if path is None:
-            return ""
+            return Located()
         if exercise.sampler_for:  # the sampler at random numbers u and views of its own
             angles = trace.sampler_rows()
         else:
@@ -342,20 +380,24 @@ class Explainer:
                 exercise, solution, check, angles, exercise.solution.read_text(encoding="utf-8")
             )
         except (OSError, ShaderCompileError, ModelError, SubmissionError):
-            return ""
+            return Located()
         if mine is None or wanted is None:
-            return ""
+            return Located()
+        exit_missing = localise.early_exit(mine, wanted)
+        if exit_missing:
+            return Located(exit_missing, exit=True)
         finding = localise.locate(mine, wanted)
         said = localise.sentence(finding, source, label_of(path)) if finding else ""
         if exercise.wrapper:  # a term exercise: the student's F, D or G beside the solution's
             names = [f.split("(")[0].split()[-1] for f in exercise.functions]
             rows = localise.term_rows(mine, wanted, names)
             said = f"{said}. {rows[0].upper()}{rows[1:]}" if said and rows else said or rows
-        return said
+        return Located(said, finding, wanted, angles)
 
     def _trace(self, exercise: Exercise, model: Model, check: Check, angles, source: str):
         """A program's trace at a check's settings, once per worker."""
-        key = (model.code, tuple(sorted(map(str, check.params.items()))), angles.tobytes())
+        params = tuple(sorted(map(str, check.params.items())))
+        key = (model.code, getattr(model, "sampler_code", None), params, angles.tobytes())
         if key not in self._traces:
             if len(self._traces) > 64:
                 self._traces.clear()

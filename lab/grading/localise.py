@@ -23,6 +23,7 @@ from lab.grading.trace import Point, Trace, geometry
 AGREE = 0.97  # share of the rows both ran on that must agree for a match or a relation
 RTOL, ATOL = 2e-3, 1e-5
 MIN_ROWS = 8
+EXIT_START = "your function differs from the solution's only where"
 CHAIN = {"*": "product", "/": "product", "+": "sum", "-": "sum"}
 NICE_POWERS = {k / 2 for k in range(-8, 9)} | {1 / n for n in range(2, 11)}
 SPOKEN = {
@@ -294,6 +295,14 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     return _with_calls(found, points)
 
 
+def target(finding: Finding) -> str:
+    """What a fault is a fault in: the variable its line sets (by its plain name), else the
+    function whose result it is."""
+    statement = finding.statement or finding.point
+    name = statement.name or finding.point.name
+    return _plain(name) if name else f"{statement.function}()"
+
+
 def _with_calls(finding: Finding, points: list[Point]) -> Finding:
     if finding.point.head == "parameter":
         finding.calls = [p for p in points if p.head == finding.point.function]
@@ -481,3 +490,40 @@ def term_rows(student: Trace, solution: Trace, functions: list[str]) -> str:
             f"{int(wrong.sum())} of {int(both.sum())} pairs differ)"
         )
     return "; ".join(out)
+
+
+def early_exit(student: Trace, solution: Trace) -> str:
+    """Where the results differ only at pairs for which the solution leaves its function
+    early with a constant (`return vec3(0.0)` below the horizon) and the student's code
+    does not: that exit is missing or its test is wrong. '' otherwise."""
+    mine, mine_ran, _ = student.value(0)
+    want, want_ran, _ = solution.value(0)
+    both = mine_ran & want_ran
+    wrong = both & ~agree(mine, want)
+    if wrong.sum() < 3:
+        return ""
+    for point in solution.traced.points:
+        if not point.statement or point.name or point.head == "parameter":
+            continue
+        values, ran, _ = solution.value(point.slot)
+        if not ran.any() or ran.all() or _varies(values[ran]):
+            continue
+        if (wrong & ~ran).sum() > 0.05 * wrong.sum() or wrong[ran].mean() < 0.25:
+            continue
+        geo = geometry(student.angles)
+        below_l, below_v = geo["N·L"] <= 0.0, geo["N·V"] <= 0.0
+        if (wrong <= below_v).all() and not (wrong <= below_l).all():
+            where, rows = "V is below the surface (N·V ≤ 0)", below_v
+        elif (wrong <= below_l).all() and not (wrong <= below_v).all():
+            where, rows = "L is below the surface (N·L ≤ 0)", below_l
+        elif (wrong <= (below_l | below_v)).all():
+            where, rows = "L or V is below the surface", below_l | below_v
+        else:
+            where, rows = f"the solution's test before `{point.text}` holds", ran
+        value = _shown(values[ran][0])
+        return (
+            f"{EXIT_START} {where}: there it should return {value} ({int(wrong.sum())} "
+            f"of the {int((rows & both).sum())} such pairs differ); that early exit, or its "
+            "test, is missing"
+        )
+    return ""
