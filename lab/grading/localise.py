@@ -435,8 +435,8 @@ def sentence(finding: Finding, source: str, label: str) -> str:
         else (f", at `{expr}`" if expr else "")
     )
     return (
-        f"{where} (`{quoted}`) is where your values first part from the solution's{inside}: "
-        "what it reads agrees, its result matches none of the solution's quantities"
+        f"{where} (`{quoted}`){inside} is your first value that matches none of the "
+        "solution's, though all it uses agrees with the solution"
     )
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -264,7 +265,7 @@ class _Instrumenter:
             Point(
                 slot=slot,
                 line=node.start_point[0] + 1,
-                text=" ".join(shown.text.decode().split()),
+                text=tidy(shown.text.decode()),
                 function=self.function,
                 statement=statement is not None,
                 name=name,
@@ -287,6 +288,20 @@ class _Instrumenter:
         text = "".join(pieces)
         template = self.edits.get(_key(node))
         return template.replace("{}", text, 1) if template else text
+
+
+def tidy(code: str) -> str:
+    """Code as a person writes it (the preprocessor's output spaces tokens oddly):
+    `h.x * X`, `(1.0 - f0) * k`, `-V`."""
+    text = " ".join(code.split())
+    text = re.sub(r"\s*\.\s*(?=[A-Za-z_])", ".", text)
+    text = re.sub(r"\s*([*/+]|==|<=|>=|&&|\|\|)\s*", r" \1 ", text)
+    text = re.sub(r"(?<=[\w)\]])(?<![0-9][eE])\s*-\s*", " - ", text)
+    text = re.sub(r"(^|[(,=?:]|return)\s*-\s+", r"\1 -", text)
+    text = re.sub(r"\(\s+", "(", text)
+    text = re.sub(r"\s+([),;\]])", r"\1", text)
+    text = re.sub(r"\s*,\s*", ", ", text)
+    return " ".join(text.split()).replace("( -", "(-").replace(", -  ", ", -")
 
 
 def _head(node) -> str:
