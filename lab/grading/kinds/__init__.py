@@ -2,8 +2,10 @@
 
 A kind owns everything about its checks, in five parts:
 
-- inputs: the keys of its `[[checks]]` table in exercise.toml (`parse`, `fields`) and the
-  direction pairs it evaluates (`angles`);
+- inputs: the keys of its `[[checks]]` table in exercise.toml (`parse`, `fields`; every
+  kind also reads `ranges`, the parameter ranges hidden mode draws from, and `purpose`,
+  what its lights are for: spec.PURPOSES, see `purpose_of`) and the direction pairs it
+  evaluates (`angles`);
 - render: what it renders from a model (`render`), stored as (`stored`), and where a
   stopped loop was (`where`);
 - compare: the verdict against the reference, with tolerance and message (`compare`,

@@ -150,9 +150,14 @@ class ValueKind(CheckKind):
 
     def practice(self, exercise, check: Check, values) -> dict:
         angles = self.angles(check)
-        return {
+        expected = values[check.name][:, :3]
+        entry = {
             "what": self.what,
             "angles": floats_b64(angles),  # degrees: theta_i, phi_i, theta_o, phi_o
-            "expected": floats_b64(values[check.name][:, :3]),
+            "expected": floats_b64(expected),
             "count": len(angles),
         }
+        tolerance = row_tolerance(check, angles, expected)
+        if tolerance is not None:  # the grader's own, row by row
+            entry["tolerance"] = floats_b64(tolerance)
+        return entry
