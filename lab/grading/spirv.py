@@ -27,6 +27,10 @@ from lab.models import SHADER_DIR, load_model, parse_model
 TOOLS = ("glslangValidator", "spirv-opt", "spirv-dis")
 SECONDS = 20.0  # per file: the optimiser on a long loop takes well under a second
 DEPTH = 2  # levels of operands in a feature
+# Levels for the class's pairs (what two students share beyond the references): one level
+# keeps a student's separate choices apart instead of multiplying them into rare-looking
+# combinations; honest pairs then share less (tests/test_similarity_class.py).
+PAIR_DEPTH = 1
 # Instructions that carry names, debug information or the module's frame, not code.
 SKIP = re.compile(
     r"Op(Name|MemberName|Decorate|MemberDecorate|Source\w*|Line|NoLine|String|ModuleProcessed"
@@ -184,7 +188,7 @@ def disassemble(code: str, exercise) -> str | None:
     return done.stdout
 
 
-def features(text: str) -> Counter:
+def features(text: str, depth: int = DEPTH) -> Counter:
     """Each instruction's shape (opcode, type, constants, and its operands' shapes to DEPTH
     levels) hashed, counted: ids and their order do not count."""
     defs: dict[str, tuple[str, list[str]]] = {}
@@ -213,7 +217,7 @@ def features(text: str) -> Counter:
 
     counts: Counter = Counter()
     for opcode, operands in body:
-        text = opcode + "(" + " ".join(shape(o, DEPTH) for o in operands) + ")"
+        text = opcode + "(" + " ".join(shape(o, depth) for o in operands) + ")"
         counts[hashlib.blake2b(text.encode(), digest_size=8).hexdigest()] += 1
     return counts
 
@@ -222,3 +226,9 @@ def normalised(code: str, exercise) -> Counter | None:
     """The submission's features, or None when it does not compile (or tools are missing)."""
     text = disassemble(code, exercise) if available() else None
     return features(text) if text is not None else None
+
+
+def both_depths(code: str, exercise) -> tuple[Counter, Counter] | None:
+    """(features to DEPTH, features to PAIR_DEPTH) from one compile, or None."""
+    text = disassemble(code, exercise) if available() else None
+    return None if text is None else (features(text), features(text, PAIR_DEPTH))
