@@ -206,7 +206,7 @@ class Rarity:
         for own in students:
             counts.update(own - reference)
         total = len(students) + 1
-        scale = math.log(total / 2)
+        scale = math.log(max(total, 3) / 2)  # one student alone: no pair, no zero
         weight = {m: math.log(total / n) / scale for m, n in counts.items()}
         return cls(reference, weight)
 
