@@ -26,6 +26,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 MAX_BYTES = 256 * 1024
+DEFAULT_API = ("PI", "INV_PI", "EPS")  # terms/common.glsl's constants: an exercise without `api`
 
 
 class SubmissionError(ValueError):
@@ -113,7 +114,7 @@ def load_exercise(folder: str | Path) -> Exercise:
             replaces=spec.get("replaces"),
             loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
             sampler_for=spec.get("sampler_for"),
-            api=[str(name) for name in spec.get("api", [])],
+            api=[str(name) for name in spec.get("api", DEFAULT_API)],
         )
     except (KeyError, TypeError) as err:
         raise ExerciseError(f"{spec_path}: missing or malformed entry {err}") from None

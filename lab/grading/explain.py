@@ -348,24 +348,24 @@ class Explainer:
     def consistent(self, exercise: Exercise, check: Check, key: str, located: Located) -> bool:
         """Does the likely wrong program whose values the student's match go wrong at the
         same quantity as the student's (a variable of the same name, or the same function's
-        result)? True where either cannot tell: a stored hint stays unless the trace
-        contradicts it."""
-        if located.finding is None or located.solution is None or key == mistakes.STUB:
-            return True
+        result)? Where the trace found no fault in the student's code, nothing contradicts
+        the hint (True); where it did, the hint must go wrong at the same place."""
+        if located.finding is None or located.solution is None:
+            return True  # nothing the trace says contradicts the hint
+        if key == mistakes.STUB:  # code was written, and the trace found a fault in it
+            return False
         variant = next((v for v in self.variants(exercise) if v.key == key), None)
         model = self.variant_model(exercise, variant) if variant is not None else None
         if model is None:
-            return True
+            return False
         solution_text = exercise.solution.read_text(encoding="utf-8")
         theirs = self._trace(exercise, model, check, located.angles, solution_text)
-        if theirs is None:
-            return True
-        if localise.early_exit(theirs, located.solution):
+        if theirs is None or localise.early_exit(theirs, located.solution):
             return False  # the variant's difference is a missing exit, the student's is not
         other = localise.locate(theirs, located.solution)
-        if other is None:
-            return True
-        return localise.target(other) == localise.target(located.finding)
+        # The trace found the student's fault: the hint is said only where its own program
+        # goes wrong at the same quantity.
+        return other is not None and localise.target(other) == localise.target(located.finding)
 
     def locate(self, exercise: Exercise, check: Check, model: Model) -> Located:
         """The line where the student's values first part from the solution's, and how

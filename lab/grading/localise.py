@@ -506,7 +506,11 @@ def early_exit(student: Trace, solution: Trace) -> str:
         if not point.statement or point.name or point.head == "parameter":
             continue
         values, ran, _ = solution.value(point.slot)
-        if not ran.any() or ran.all() or _varies(values[ran]):
+        called = np.zeros_like(ran)  # where its function ran at all: an early exit is a
+        for other in solution.traced.points:  # part of those pairs, not all of them
+            if other.function == point.function:
+                called |= solution.value(other.slot)[1]
+        if not ran.any() or not (called & ~ran).any() or _varies(values[ran]):
             continue
         if (wrong & ~ran).sum() > 0.05 * wrong.sum() or wrong[ran].mean() < 0.25:
             continue
