@@ -156,8 +156,11 @@ DIAGNOSED = [
 
 
 def likely(message: str) -> str:
-    """The diagnosis sentence (the grader's output goes on with a table of rows)."""
-    return message.split("Likely: ", 1)[1].split("\n")[0] if "Likely: " in message else ""
+    """The diagnosis sentence (the grader's output goes on with where the fault is, which
+    only the grader can trace, and a table of rows)."""
+    if "Likely: " not in message:
+        return ""
+    return message.split("Likely: ", 1)[1].split("\n")[0].split(" Where: ")[0]
 
 
 @pytest.mark.parametrize("exercise,student_file,slip", DIAGNOSED)

@@ -11,7 +11,7 @@ import math
 import os
 from collections.abc import Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -50,6 +50,7 @@ __all__ = [
     "CheckResult",
     "Grader",
     "Prepared",
+    "Submission",
     "expected_value",
     "failed",
     "hidden_variant",
@@ -141,27 +142,37 @@ def stopped_where(check: Check, x: int, y: int) -> str:
 
 # -- the submission, before any OpenGL -------------------------------------------------------
 @dataclass
-class Prepared:
-    """A submission read and preprocessed (glslang), with its GLSL ES compile under way."""
+class Submission:
+    """One reading of a student's file, shared by every check, the diagnosis and the
+    similarity report: its text, the model built from it (the preprocessed code, the
+    header), the header lines the grader put back, the GLSL ES compile under way, and the
+    diagnosis's traces of it (lab.grading.trace), made once however many checks fail."""
 
-    code: str = ""
+    code: str = ""  # the file's text, as read
     model: Model | None = None
     error: str = ""  # why it cannot be graded at all (every check gets it)
     portable: Future | None = None  # the portability warnings
+    notes: list[str] = field(default_factory=list)  # header lines put back, in words
+    traces: dict = field(default_factory=dict)  # the diagnosis's, by check setting
+    instrumented: dict = field(default_factory=dict)  # its instrumented code, by part
 
 
-def prepare(exercise: Exercise, submission: Path, root: Path | None = None) -> Prepared:
+Prepared = Submission  # the name grading code used before
+
+
+def prepare(exercise: Exercise, submission: Path, root: Path | None = None) -> Submission:
     """Read and build the submission (no GL needed: a worker does this while its context is
     made). The GLSL ES compile runs beside the checks; its warnings go with the last one."""
     try:
         code = read_submission(submission, root)
         model = build_model(exercise, submission, code)
     except SubmissionError as err:
-        return Prepared(error=str(err))
+        return Submission(error=str(err))
     executor = ThreadPoolExecutor(max_workers=1)
     portable = executor.submit(portability_warnings, model, label_of(submission))
     executor.shutdown(wait=False)
-    return Prepared(code, model, portable=portable)
+    notes = header_notes(exercise, submission, code)
+    return Submission(code, model, portable=portable, notes=notes)
 
 
 # -- the grader -----------------------------------------------------------------------------
@@ -173,6 +184,7 @@ class Grader:
         self._solutions: dict[Path, Model] = {}
         self._references: dict[tuple, tuple] = {}
         self.explainer = None  # lab.grading.explain.Explainer, set by the runner
+        self.reading: Submission | None = None  # the last submission graded
 
     @property
     def renderer(self) -> Renderer:
@@ -226,6 +238,7 @@ class Grader:
         is what prepare() made of the file already, if anything."""
         todo = [(i, c) for i, c in enumerate(exercise.checks) if c.name not in skip]
         ready = prepared or prepare(exercise, submission, root)
+        self.reading = ready
         if ready.error:
             for _, check in todo:
                 yield failed(check, ready.error, status="error")
@@ -241,7 +254,9 @@ class Grader:
                     check, f"cannot get the reference: {err} (ask your instructor)", status="error"
                 )
             else:
-                result = self.grade(exercise, check, model, code, expected, live=seed is not None)
+                result = self.grade(
+                    exercise, check, model, code, expected, seed is not None, reading=ready
+                )
                 if seed is not None:
                     result.setting = {
                         "seed": seed,
@@ -251,7 +266,7 @@ class Grader:
                         "probe_seed": check.seed,
                     }
             if index == todo[0][0]:  # header lines the grader put back, named once
-                result.warnings = header_notes(exercise, submission, code)
+                result.warnings = list(ready.notes)
             if index == todo[-1][0]:
                 result.warnings = result.warnings + portable.result()
             yield result
@@ -264,6 +279,7 @@ class Grader:
         code: str,
         expected: np.ndarray,
         live: bool = False,
+        reading: Submission | None = None,
     ) -> CheckResult:
         twin = getattr(self.renderer, "_ibl_twin", None)  # a sampling exercise's passes
         if twin is not None:
@@ -299,19 +315,21 @@ class Grader:
             )
         result = self.compare(check, expected, raw)
         if not result.passed:
-            result.diagnosis = self.diagnose(exercise, check, model, expected, raw, live)
+            result.diagnosis = self.diagnose(exercise, check, model, expected, raw, live, reading)
             if result.diagnosis:  # a loop is named only by the loop guard, above
                 result.message += ". " + result.diagnosis
         return result
 
-    def diagnose(self, exercise, check, model, expected, raw, live: bool) -> str:
+    def diagnose(self, exercise, check, model, expected, raw, live: bool, reading=None) -> str:
         """The likely mistake, from the explainer the runner plugs in (lab.grading.explain);
         a diagnosis never breaks grading."""
         if self.explainer is None:
             return ""
         try:
             with np.errstate(all="ignore"):  # broken values (inf, NaN) are evidence here
-                return self.explainer.explain(exercise, check, model, expected, raw, live)
+                return self.explainer.explain(
+                    exercise, check, model, expected, raw, live, reading=reading
+                )
         except Exception:  # noqa: BLE001 - no hint is better than no grade
             if os.environ.get("BRDF_LAB_DEBUG"):
                 import traceback

@@ -219,8 +219,8 @@ def similarity_report(tasks: dict, exercises, out: Path) -> None:
         for task in mine:
             if not task.key:
                 continue  # refused (a link): nothing of theirs to read
-            try:
-                text = read_submission(task.submission, task.root)
+            try:  # the text the worker graded, read once (else, refused there: read here)
+                text = task.text or read_submission(task.submission, task.root)
             except SubmissionError:
                 continue
             files.setdefault(student, {})[task.exercise.name] = (text, task)

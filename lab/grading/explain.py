@@ -9,6 +9,7 @@ Nothing matches: nothing is said.
 from __future__ import annotations
 
 import os
+import re
 import traceback
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -190,6 +191,13 @@ class Located:
     solution: trace.Trace | None = None
     angles: np.ndarray | None = None
     exit: bool = False  # the difference is a missing early exit
+    source: str | None = None  # the student's file
+
+
+def _bare(code: str) -> str:
+    """Code without comments and white space: a file as handed out, edited or not."""
+    code = re.sub(r"/\*.*?\*/|//[^\n]*", "", code, flags=re.S)
+    return "".join(code.split())
 
 
 class Explainer:
@@ -318,8 +326,10 @@ class Explainer:
         expected: np.ndarray,
         raw: np.ndarray,
         live: bool,
+        reading=None,
     ) -> str:
-        """'Likely: ...' for a failed check, or '' when the evidence names nothing."""
+        """'Likely: ...' for a failed check, or '' when the evidence names nothing;
+        `reading` is the grader's lab.grading.checks.Submission of the file, if any."""
         hints = mistakes.read_hints(exercise)
         kind = kind_of(check)
         got = kind.stored(raw, check)  # the form of the reference and the variants' values
@@ -329,7 +339,7 @@ class Explainer:
             candidates = {k: v for k, v in self.candidates(exercise, check).items() if k in hints}
             key = kind.nearest(check, got, expected, candidates)
         try:
-            located = self.locate(exercise, check, model)
+            located = self.locate(exercise, check, model, reading)
         except Exception:  # noqa: BLE001 - the stored hints stand without the trace
             if os.environ.get("BRDF_LAB_DEBUG"):
                 traceback.print_exc()
@@ -352,9 +362,10 @@ class Explainer:
         the hint (True); where it did, the hint must go wrong at the same place."""
         if located.finding is None or located.solution is None:
             return True  # nothing the trace says contradicts the hint
-        if key == mistakes.STUB:  # code was written, and the trace found a fault in it
-            return False
         variant = next((v for v in self.variants(exercise) if v.key == key), None)
+        if key == mistakes.STUB:  # said to the stub as handed out, not to code written in it
+            stub = variant.code if variant is not None else ""
+            return located.source is not None and _bare(located.source) == _bare(stub)
         model = self.variant_model(exercise, variant) if variant is not None else None
         if model is None:
             return False
@@ -367,7 +378,7 @@ class Explainer:
         # goes wrong at the same quantity.
         return other is not None and localise.target(other) == localise.target(located.finding)
 
-    def locate(self, exercise: Exercise, check: Check, model: Model) -> Located:
+    def locate(self, exercise: Exercise, check: Check, model: Model, reading=None) -> Located:
         """The line where the student's values first part from the solution's, and how
         (lab.grading.localise), at the check's pairs or, for an image, pairs of its own;
         an empty text where the program cannot be traced or nothing stands out."""
@@ -380,8 +391,8 @@ class Explainer:
             angles = kind_of(check).angles(check)
             angles = trace.pairs() if angles is None else angles
         try:
-            source = Path(path).read_text(encoding="utf-8")
-            mine = self._trace(exercise, model, check, angles, source)
+            source = reading.code if reading is not None else Path(path).read_text("utf-8")
+            mine = self._trace(exercise, model, check, angles, source, reading)
             solution = self.grader.solution_model(exercise)
             wanted = self._trace(
                 exercise, solution, check, angles, exercise.solution.read_text(encoding="utf-8")
@@ -399,19 +410,24 @@ class Explainer:
             names = [f.split("(")[0].split()[-1] for f in exercise.functions]
             rows = localise.term_rows(mine, wanted, names)
             said = f"{said}. {rows[0].upper()}{rows[1:]}" if said and rows else said or rows
-        return Located(said, finding, wanted, angles)
+        return Located(said, finding, wanted, angles, source=source)
 
-    def _trace(self, exercise: Exercise, model: Model, check: Check, angles, source: str):
-        """A program's trace at a check's settings, once per worker."""
+    def _trace(
+        self, exercise: Exercise, model: Model, check: Check, angles, source: str, reading=None
+    ):
+        """A program's trace at a check's settings: the student's kept with their reading
+        (instrumented once), the solution's and variants' once per worker."""
         params = tuple(sorted(map(str, check.params.items())))
         key = (model.code, getattr(model, "sampler_code", None), params, angles.tobytes())
-        if key not in self._traces:
-            if len(self._traces) > 64:
-                self._traces.clear()
+        cache = reading.traces if reading is not None else self._traces
+        if key not in cache:
+            if len(cache) > 64:
+                cache.clear()
             wrapped = exercise.wrapper or exercise.sampler_for  # code after the student's
             last = len(source.splitlines()) if wrapped else 1 << 30
-            self._traces[key] = trace.run(self.grader.renderer, model, check.params, angles, last)
-        return self._traces[key]
+            kept = reading.instrumented if reading is not None else None
+            cache[key] = trace.run(self.grader.renderer, model, check.params, angles, last, kept)
+        return cache[key]
 
     def terms(
         self, exercise: Exercise, check: Check, model: Model, angles: np.ndarray, live: bool

@@ -50,6 +50,7 @@ class Task:
     timeouts: int = 0
     started: float = 0.0
     seconds: float = 0.0
+    text: str = ""  # the file's text as the worker read and graded it
 
     def checks(self) -> list[CheckResult]:
         """Results in the exercise's order (every check has one once the task is done)."""
@@ -176,6 +177,8 @@ def _serve(conn: Connection, memory: int = 0, cpu_seconds: float = 0.0) -> None:
             results = grader.run(exercise, Path(submission), seed, frozenset(skip), root, prepared)
             for result in results:
                 conn.send(("check", key, result))
+            if grader.reading is not None:  # the text graded, for the similarity report
+                conn.send(("read", key, grader.reading.code))
             conn.send(("done", key, None))
         except MemoryError:
             conn.send(("crash", key, f"the shader needs more than the {memory >> 20} MB allowed"))
@@ -316,6 +319,9 @@ class Pool:
             kind, _, payload = worker.conn.recv()
         except (EOFError, OSError):
             self._abandon(worker, queue, on_done, self._why_ended(worker))
+            return
+        if kind == "read":
+            task.text = payload
             return
         if kind == "check":
             task.results[payload.name] = payload

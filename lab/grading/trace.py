@@ -356,23 +356,33 @@ class Trace:
 
 
 def run(
-    renderer: Renderer, model: Model, values: dict, angles_deg: np.ndarray, last_line: int = 1 << 30
+    renderer: Renderer,
+    model: Model,
+    values: dict,
+    angles_deg: np.ndarray,
+    last_line: int = 1 << 30,
+    kept: dict | None = None,
 ) -> Trace | None:
     """Trace `model` at direction pairs (theta_i, phi_i, theta_o, phi_o in degrees); None
     where its code cannot be parsed or instrumented code does not compile.
 
     A sampling exercise's model (one with `sampler_code`) is traced in its sampler: the
-    first two columns of a row are then the random numbers u, not angles."""
+    first two columns of a row are then the random numbers u, not angles. `kept` holds
+    instrumented code already made, by (code, last line)."""
     import moderngl
 
     from lab.glsl import ShaderCompileError
 
     sampler = getattr(model, "sampler_code", None)
     view = VIEW if sampler is None else SAMPLER_VIEW
+    code = model.code if sampler is None else sampler
+    traced = kept.get((code, last_line)) if kept is not None else None
     try:
-        traced = instrument(model.code if sampler is None else sampler, last_line)
+        traced = traced or instrument(code, last_line)
     except (ImportError, RecursionError, UnicodeError):
         return None
+    if kept is not None:  # `kept`: a submission's instrumented code, made once
+        kept[(code, last_line)] = traced
     instrumented = replace(model, code=traced.code)
     if sampler is not None:  # the sampler alone, with the library's frame helpers
         instrumented.includes = ["terms/sampling.glsl"]
