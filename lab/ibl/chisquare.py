@@ -23,7 +23,7 @@ from lab.ibl.integrator import IBLRenderer
 
 THETA_BINS, PHI_BINS = 20, 40
 MIN_EXPECTED = 5.0
-SUB = 8  # cells per bin side before refinement
+SUB = 4  # cells per bin side before refinement (Richardson makes 4 as good as 8)
 TOLERANCE = 1e-7  # a cell is done when halving it changes its probability less than this
 MAX_LEVELS = 16
 MAX_CELLS = 400_000  # cells refined at once (more are accepted as they are)
@@ -148,7 +148,12 @@ def bin_probabilities(
         done = (np.abs(fine - coarse) <= TOLERANCE) & ~_near(c0, p0, dc, dp, apex)
         if level == MAX_LEVELS or (~done).sum() * 4 > MAX_CELLS:
             done[:] = True
-        total += np.bincount(which[done], weights=fine[done], minlength=total.size)
+        # Richardson: the midpoint rule's error falls 4x per halving, so fine + (fine -
+        # coarse) / 3 is exact to the next order. Without it the errors of many cells added
+        # up at a sharp lobe (ke = 200: 1.2e-4 of the mass missing, 12 phantom "failed"
+        # samples per 100,000 in the pooled bin, chi-square p = 1e-41 at 3 million).
+        better = fine + (fine - coarse) / 3.0
+        total += np.bincount(which[done], weights=better[done], minlength=total.size)
         if done.all():
             break
         keep = ~done

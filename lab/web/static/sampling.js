@@ -17,7 +17,7 @@ const THETA_BINS = 20;
 const PHI_BINS = 40;
 const BINS = THETA_BINS * PHI_BINS;
 const MIN_EXPECTED = 5;
-const SUB = 8; // cells per bin side before refinement
+const SUB = 4; // cells per bin side before refinement (chisquare.SUB)
 const TOLERANCE = 1e-7; // a cell is done when halving it changes its probability less
 const MAX_LEVELS = 16;
 const MAX_CELLS = 400_000;
@@ -117,7 +117,8 @@ export function binProbabilities(panel, V, frame) {
       done.fill(1);
       open = 0;
     }
-    for (let k = 0; k < m; k++) if (done[k]) total[which[k]] += fine[k];
+    // Richardson, as chisquare.bin_probabilities: fine + (fine - coarse) / 3.
+    for (let k = 0; k < m; k++) if (done[k]) total[which[k]] += fine[k] + (fine[k] - mid[k] * area) / 3;
     if (!open) break;
     const [nc, np_, nw, nm] = [new Float64Array(4 * open), new Float64Array(4 * open), new Int32Array(4 * open),
       new Float64Array(4 * open)];
