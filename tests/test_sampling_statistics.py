@@ -127,7 +127,8 @@ def test_render_z_scores_of_correct_samplers_are_calibrated(hidden):
 @pytest.mark.parametrize("name", ["uniform", "cosine", "ignore_ke"])
 def test_samplers_that_do_not_follow_the_lobe_lose_the_render(grader, name):
     """Unbiased samplers with exact pdfs pass the chi-square and the pdf integral, and lose
-    the render's points: at equal samples their error is more than twice the solution's."""
+    the render's points, half the exercise's: at equal samples their error is more than
+    twice the solution's."""
     programs = ready({name: SOLVED / "inefficient" / f"{name}.glsl"})
     for seed in (None, 7, 8):
         checks = results(grader, programs, seed)[name]
@@ -135,6 +136,7 @@ def test_samplers_that_do_not_follow_the_lobe_lose_the_render(grader, name):
         assert not render.passed and "× the solution's noise" in render.message, render.message
         assert "biased" not in render.message  # it converges to the right image
         assert all(r.passed for r in checks.values()), {n: r.message for n, r in checks.items()}
+        assert sum(r.points for r in checks.values()) == EXERCISE.max_points / 2
 
 
 def pearson_rejections(probabilities: np.ndarray, samples: int, level: float, draws: int):
