@@ -102,8 +102,8 @@ def test_an_endless_loop_in_the_sampler_is_named_not_graded(grader, tmp_path):
     [
         ("views = [[10.0, 0.0], [70.0, 130.0]]", "views = [[95.0, 0.0]]", "0 <= theta < 90"),
         (
-            'samples = 100000\nalpha = 0.002\nranges = { ke = [8.0, 400.0] }',
-            'samples = 10\nalpha = 0.002\nranges = { ke = [8.0, 400.0] }',
+            "samples = 100000\nalpha = 0.002\nranges = { ke = [8.0, 400.0] }",
+            "samples = 10\nalpha = 0.002\nranges = { ke = [8.0, 400.0] }",
             "samples must",
         ),
         ('environment = "grey_room"', 'environment = "moon"', "is not one of"),
