@@ -295,6 +295,19 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     return _with_calls(found, points)
 
 
+def computes(student: Trace, other: Trace, point: Point) -> bool:
+    """Does the student's code compute, somewhere, the values of `other`'s point?"""
+    values, ran, _ = other.value(point.slot)
+    if not ran.any() or not _varies(values[ran]):
+        return False  # a constant proves nothing
+    wanted = Quantity(point.text, values, ran)
+    for p in student.traced.points:
+        v, r, _ = student.value(p.slot)
+        if matches(v, r, wanted):
+            return True
+    return False
+
+
 def target(finding: Finding) -> str:
     """What a fault is a fault in: the variable its line sets (by its plain name), else the
     function whose result it is."""
@@ -310,6 +323,8 @@ def _with_calls(finding: Finding, points: list[Point]) -> Finding:
 
 
 def _geometry(trace: Trace) -> list[Quantity]:
+    if not trace.directions:
+        return []  # rows of normals or random numbers: no L and V to name
     rows = len(trace.angles)
     everywhere = np.ones(rows, bool)
     out = []
@@ -426,6 +441,13 @@ def sentence(finding: Finding, source: str, label: str) -> str:
         what = f"the argument {finding.point.name} of {finding.point.function}{at}"
         said = finding.relation or "matches none of the solution's quantities"
         return f"{label}:{line}: {what} {said}"
+    loop = finding.point.loop
+    if loop is not None:  # a loop's values are its last pass's: the cause may lie before
+        return (
+            f"{label}:{loop[0]}-{loop[1]}: in this loop, line {line} (`{quoted}`) gives "
+            "the first value that matches none of the solution's at the loop's last pass "
+            "(the cause may be earlier in the loop, such as a light it should skip or stop at)"
+        )
     if finding.relation:
         what = f"`{expr}`" if expr else "its value"
         return f"{where} (`{quoted}`): {what} {finding.relation}"

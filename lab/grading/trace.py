@@ -25,6 +25,9 @@ if TYPE_CHECKING:
 
 VIEW = "grade_trace"
 SAMPLER_VIEW = "grade_trace_sampler"
+ILLUMINATION_VIEW = "grade_trace_illumination"
+# The grading view an exercise's checks use, and the trace harness for its function.
+HARNESS = {"grade_illumination": ILLUMINATION_VIEW}
 MAX_SLOTS = 400  # rows of the trace image; a longer program is traced in part
 MAX_PAIRS = 1024  # columns: one texture row of direction pairs
 ARITHMETIC = {"+", "-", "*", "/"}
@@ -72,6 +75,7 @@ class Point:
     deps: list[int] = field(default_factory=list)  # slots whose values this one reads
     head: str = ""  # the operation: a called function's name or an operator
     partial: list[int] = field(default_factory=list)  # deps read through a swizzle (h.z)
+    loop: tuple[int, int] | None = None  # first and last line of the loop it is in
 
 
 @dataclass
@@ -138,6 +142,7 @@ class _Instrumenter:
         self.edits: dict[tuple[int, int, str], str] = {}  # node -> template with {}
         self.defined: dict[str, int] = {}  # variable -> slot of its last assignment
         self.function = ""
+        self.loop: tuple[int, int] | None = None  # the lines of the outermost loop we are in
 
     def run(self, tree) -> None:
         for node in tree.root_node.named_children:
@@ -197,11 +202,15 @@ class _Instrumenter:
             if node.named_children:
                 self.expression(node.named_children[0], node, "")
         elif kind in ("if_statement", "for_statement", "while_statement", "do_statement"):
+            outer = self.loop
+            if kind != "if_statement":  # a value in a loop is the one of its last pass
+                self.loop = outer or (node.start_point[0] + 1, node.end_point[0] + 1)
             for child in node.named_children:
                 if child.type.endswith("statement"):
                     self.statement(child)
                 elif child.type == "else_clause":
                     self.block(child)
+            self.loop = outer
 
     def assignment(self, node, expr) -> None:
         left, right = expr.child_by_field_name("left"), expr.child_by_field_name("right")
@@ -274,6 +283,7 @@ class _Instrumenter:
                 deps=[abs(d) for d in deps if d],
                 partial=[-d for d in deps if d < 0],
                 head=_head(node),
+                loop=self.loop,
             )
         )
         return slot
@@ -339,6 +349,7 @@ class Trace:
     traced: Traced
     values: np.ndarray
     angles: np.ndarray
+    directions: bool = True  # rows are direction pairs (L, V), not normals or random numbers
 
     def value(self, slot: int) -> tuple[np.ndarray, np.ndarray, int]:
         """Slot's values (pairs, components), the rows where it ran, its component count."""
@@ -362,19 +373,21 @@ def run(
     angles_deg: np.ndarray,
     last_line: int = 1 << 30,
     kept: dict | None = None,
+    view: str = "",
 ) -> Trace | None:
     """Trace `model` at direction pairs (theta_i, phi_i, theta_o, phi_o in degrees); None
     where its code cannot be parsed or instrumented code does not compile.
 
     A sampling exercise's model (one with `sampler_code`) is traced in its sampler: the
     first two columns of a row are then the random numbers u, not angles. `kept` holds
-    instrumented code already made, by (code, last line)."""
+    instrumented code already made, by (code, last line). `view`: the trace harness, where
+    the exercise's function is not a BRDF (ILLUMINATION_VIEW: rows are normals)."""
     import moderngl
 
     from lab.glsl import ShaderCompileError
 
     sampler = getattr(model, "sampler_code", None)
-    view = VIEW if sampler is None else SAMPLER_VIEW
+    view = view or (VIEW if sampler is None else SAMPLER_VIEW)
     code = model.code if sampler is None else sampler
     traced = kept.get((code, last_line)) if kept is not None else None
     try:
@@ -404,7 +417,16 @@ def run(
         return None
     finally:
         texture.release()
-    return Trace(traced, data.reshape(rows, len(angles), 4).copy(), angles)
+    values = data.reshape(rows, len(angles), 4).copy()
+    return Trace(traced, values, angles, directions=view in (VIEW,))
+
+
+def normal_rows(seed: int = 13, n: int = 256) -> np.ndarray:
+    """Rows (theta, phi, 0, 0) of normals over the visible half of a sphere (in degrees)."""
+    rng = np.random.default_rng(seed)
+    theta = np.degrees(np.arccos(rng.uniform(0.05, 1.0, n)))
+    zeros = np.zeros(n)
+    return np.stack([theta, rng.uniform(0.0, 360.0, n), zeros, zeros], axis=1)
 
 
 def sampler_rows(seed: int = 11, n: int = 256) -> np.ndarray:
