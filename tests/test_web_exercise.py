@@ -189,7 +189,9 @@ def test_practice_diagnosis_equals_the_grader(page, tmp_path, exercise, student_
         named += bool(likely(message) or "Where: " in message)
     assert named, f"the grader names no likely mistake for {slip}: pick another slip"
     if slip[0].startswith("pow("):  # the exponent scaled: fitted from the same table
-        assert any("exponent of about" in likely(m) for _, m in graded.values()), graded
+        assert any(
+            "exponent of about" in likely(m) or "to the power" in m for _, m in graded.values()
+        ), graded
     assert page.errors == []
 
 
@@ -239,6 +241,8 @@ def test_sampling_checks_give_the_graders_verdicts(page, tmp_path, slip):
     for name, (passed, message) in web.items():
         assert passed == graded[name][0], (name, message, graded[name][1])
         graders = unlocated(graded[name][1])
+        if "Where: " in graded[name][1] and "Likely: " not in graded[name][1]:
+            message = message.split(" Likely: ")[0]  # the grader traced the code instead
         assert shape(message) == shape(graders), (name, message, graded[name][1])
     assert (slip is None) == all(passed for passed, _ in web.values())
     assert "only the grader runs" in page.locator("#exercise").inner_text()

@@ -1,0 +1,158 @@
+"""How two arrays of values relate: agreement within float32 noise, and the simple
+relations a slip leaves between a student's value and the quantity it stands for (opposite
+sign, a constant factor, 1 − x, a missing clamp, a power, a term too many or too few, a
+factor too many or too few). Plain numpy; lab.grading.localise applies it to traces."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+AGREE = 0.97  # share of the rows both ran on that must agree for a match or a relation
+RTOL, ATOL = 2e-3, 1e-5
+MIN_ROWS = 8
+NICE_POWERS = {k / 2 for k in range(-8, 9)} | {1 / n for n in range(2, 11)}
+NAMED_FACTORS = (
+    (math.pi, "π"),
+    (1 / math.pi, "1/π"),
+    (2.0, "2"),
+    (0.5, "1/2"),
+    (4.0, "4"),
+    (0.25, "1/4"),
+    (180 / math.pi, "180/π (degrees where radians belong)"),
+    (math.pi / 180, "π/180 (radians where degrees belong)"),
+    (8.0, "8"),
+    (0.125, "1/8"),
+    (2 * math.pi, "2π"),
+    (1 / (2 * math.pi), "1/(2π)"),
+)
+
+
+@dataclass
+class Quantity:
+    label: str
+    values: np.ndarray  # (rows, components)
+    ran: np.ndarray  # bool (rows,)
+    name: str = ""  # the variable it is kept in, if any
+
+
+def agree(a: np.ndarray, b: np.ndarray, scale: float | None = None) -> np.ndarray:
+    """Rows where two value arrays agree within the float32 noise of a rewrite (`scale`:
+    the size of the values, for the absolute part; by default b's mean)."""
+    with np.errstate(invalid="ignore"):
+        size = float(np.nanmean(np.abs(b))) if scale is None else scale
+        tol = RTOL * np.maximum(np.abs(a), np.abs(b)) + ATOL * (1.0 + size)
+        close = np.abs(a - b) <= tol
+    close |= np.isnan(a) & np.isnan(b)
+    return close.all(axis=-1)
+
+
+def shared_rows(s_ran: np.ndarray, q: Quantity) -> np.ndarray | None:
+    joint = s_ran & q.ran & np.isfinite(q.values).all(axis=-1)
+    return joint if joint.sum() >= max(MIN_ROWS, 0.25 * s_ran.sum()) else None
+
+
+def matches(values: np.ndarray, ran: np.ndarray, q: Quantity) -> bool:
+    if values.shape[1] != q.values.shape[1]:
+        return False
+    joint = shared_rows(ran, q)
+    if joint is None:
+        return False
+    return bool(agree(values[joint], q.values[joint]).mean() >= AGREE)
+
+
+def varies(q: np.ndarray) -> bool:
+    spread = np.nanstd(q)
+    return bool(np.isfinite(spread) and spread > 1e-4 * (1.0 + np.nanmean(np.abs(q))))
+
+
+def factor_name(c: float) -> str:
+    for value, name in NAMED_FACTORS:
+        if abs(c - value) <= 2e-3 * value:
+            return name
+    return f"{c:.3g}"
+
+
+def relation(s: np.ndarray, q: np.ndarray) -> str:
+    """How the student's values s relate to a quantity's q on the same rows: a phrase with
+    {q} for the quantity's name, or '' when no simple relation holds nearly everywhere."""
+    if not varies(q):
+        return ""
+    ok = judge(s, q)
+    if ok(-q):
+        return "has the opposite sign of {q}"
+    big = np.abs(q) > 1e-3 * np.abs(q).max()
+    if big.sum() >= MIN_ROWS:
+        c = float(np.median(s[big] / q[big]))
+        if np.isfinite(c) and abs(c - 1.0) > 1e-2 and c != 0.0 and ok(c * q):
+            return f"is {factor_name(c)} × {{q}}"
+        total = float(np.median(s + q))
+        if abs(total) > 1e-3 and ok(total - q):
+            return (
+                f"is {total:.3g} − {{q}}"
+                if abs(total - round(total)) > 1e-3
+                else (f"is {round(total)} − {{q}}")
+            )
+    if ok(np.maximum(q, 0.0)) and (q < -1e-4).mean() > 0.01:
+        return "is clamped at 0 where {q} goes negative"
+    if (q >= 0).all() and ok(np.where(q > 0, q, np.minimum(s, 0.0))) and (s < -1e-4).any():
+        return "is not clamped at 0: it goes negative where {q} is 0"
+    inside = ((q > 1e-3) & (q < 0.999) & (s > 1e-30)).all(axis=-1)
+    if inside.sum() >= max(MIN_ROWS, len(q) // 10) and s.shape[1] == 1:
+        p = float(np.median(np.log(s[inside]) / np.log(q[inside])))
+        nice = any(abs(p - n) < 2e-3 * max(1.0, abs(n)) for n in NICE_POWERS)
+        with np.errstate(all="ignore"):
+            powered = np.sign(q) * np.abs(q) ** p
+        if nice and abs(p - 1.0) > 1e-2 and ok(powered):
+            return f"is {{q}} to the power {p:.3g}"
+    return ""
+
+
+def judge(s: np.ndarray, q: np.ndarray):
+    """A test of a guessed relation: s agrees with the guess on nearly every row where s
+    or q is not negligible (two lobes that are both nearly 0 away from their peaks
+    agree there whatever their relation)."""
+    size = np.abs(s).max(axis=-1) + np.abs(q).max(axis=-1)
+    rows = size > 1e-3 * np.nanmax(size) if np.isfinite(size).any() else size > 0
+    scale = float(np.nanmean(np.abs(q))) if np.isfinite(q).any() else 0.0
+
+    def ok(guess: np.ndarray) -> bool:
+        if rows.sum() < MIN_ROWS:
+            return False
+        guess = np.broadcast_to(guess, s.shape)
+        return bool(agree(s[rows], guess[rows], scale).mean() >= AGREE)
+
+    return ok
+
+
+def term(
+    s: np.ndarray, q: np.ndarray, joint: np.ndarray, others: list[Quantity], meant: Quantity
+) -> str:
+    """s is q with one of its terms or factors changed: a missing or extra term r
+    (s = q + c r), or a factor r too many or too few (s = q r, s = q / r)."""
+    diff, ok = s - q, judge(s, q)
+    for other in others:
+        if other is meant or other.values.shape[1] not in (1, s.shape[1]):
+            continue
+        r = other.values[joint]
+        if not other.ran[joint].all() or not np.isfinite(r).all():
+            continue
+        big = (np.abs(r) > 1e-6).all(axis=-1)
+        if big.sum() < MIN_ROWS:
+            continue
+        c = float(np.median(diff[big] / r[big]))
+        k = c + 1.0
+        if np.isfinite(c) and abs(c) > 1e-3 and ok(q + c * r):
+            if abs(k) < 1e-3:
+                return f"lacks the term {other.label} that {meant.label} has"
+            if factor_name(k) != f"{k:.3g}":  # a named factor: π, 2, 1/2...
+                return f"is {meant.label} with its term {other.label} multiplied by " + (
+                    factor_name(k)
+                )
+        if varies(r) and ok(q * r):
+            return f"is {meant.label} multiplied by {other.label}"
+        if varies(r) and ok(q / np.where(r == 0, np.nan, r)):
+            return f"is {meant.label} divided by {other.label}"
+    return ""
