@@ -243,7 +243,8 @@ def test_sampling_checks_give_the_graders_verdicts(page, tmp_path, slip):
         graders = unlocated(graded[name][1])
         if "Where: " in graded[name][1] and "Likely: " not in graded[name][1]:
             message = message.split(" Likely: ")[0]  # the grader traced the code instead
-        assert shape(message) == shape(graders), (name, message, graded[name][1])
+        mine, theirs = shape(message).rstrip("."), shape(graders).rstrip(".")
+        assert mine == theirs, (name, message, graded[name][1])
     assert (slip is None) == all(passed for passed, _ in web.values())
     assert "only the grader runs" in page.locator("#exercise").inner_text()
     assert page.errors == []

@@ -14,6 +14,7 @@ from __future__ import annotations
 import functools
 import math
 import re
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -91,7 +92,12 @@ def _parser():
     import tree_sitter
     import tree_sitter_glsl
 
-    return tree_sitter.Parser(tree_sitter.Language(tree_sitter_glsl.language()))
+    with warnings.catch_warnings():
+        # tree-sitter-glsl 0.2 hands its grammar over as an int, which tree-sitter 0.22+
+        # still takes but calls deprecated (the tests turn warnings into errors)
+        warnings.simplefilter("ignore", DeprecationWarning)
+        language = tree_sitter.Language(tree_sitter_glsl.language())
+    return tree_sitter.Parser(language)
 
 
 def parse(code: str):
