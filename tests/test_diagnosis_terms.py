@@ -91,7 +91,12 @@ def test_hidden_mode_names_generated_mutants(tmp_path):
     exercise = EXERCISES["02_phong"]
     kept = mistakes.read_hints(exercise)
     solution = exercise.solution.read_text(encoding="utf-8")
-    found = [v for v in mistakes.mutants(solution) if v.key in kept]
+    # (a mutant of the early exit's test is named by the trace as that exit, not by its hint)
+    found = [
+        v
+        for v in mistakes.mutants(solution)
+        if v.key in kept and not any("return vec3(0.0)" in old for old, _ in v.edits)
+    ]
     assert found, "02 keeps no generated mutant"
     variant = found[0]
     said = diagnoses(grade(tmp_path, "02_phong", list(variant.edits), seed=7))

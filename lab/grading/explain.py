@@ -330,15 +330,31 @@ class Explainer(TraceEvidence):
         if located.exit:  # stronger than any stored hint
             return diagnosis.sentence(where)
         if key in hints and self.consistent(exercise, check, key, located):
+            if key == mistakes.STUB:  # the file as handed out: nothing of theirs to locate
+                return diagnosis.sentence(hints[key])
             return diagnosis.sentence(hints[key]) + (f" Where: {where}." if where else "")
-        if where:
-            return f"Where: {where}."
-        if key in hints:  # a hint the trace contradicts is left unsaid
-            return ""
-        return diagnosis.sentence(kind.explain(self, exercise, check, model, expected, got, live))
+        located_only = f" Where: {where}." if where else ""
+        if key in hints and where:  # a hint the trace contradicts is left unsaid
+            return located_only.strip()
+        if not where:
+            shape = kind.explain(self, exercise, check, model, expected, got, live)
+            return diagnosis.sentence(shape)
+        # With the trace's line, only what evaluating the code says besides: which declared
+        # term is wrong, or L and V swapped (the shape of the values alone may mislead).
+        angles = kind.angles(check)
+        said = ""
+        if angles is not None and located.finding is not None and not located.finding.relation:
+            said = self.terms(exercise, check, model, angles, live, detail=False)
+        return (diagnosis.sentence(said) + located_only).strip()
 
     def terms(
-        self, exercise: Exercise, check: Check, model: Model, angles: np.ndarray, live: bool
+        self,
+        exercise: Exercise,
+        check: Check,
+        model: Model,
+        angles: np.ndarray,
+        live: bool,
+        detail: bool = True,
     ) -> str:
         """Evaluate each declared term alone; name the wrong one and the shape of its error.
 
@@ -347,7 +363,7 @@ class Explainer(TraceEvidence):
         terms = mistakes.read_terms(exercise)
         if len(terms) < 2:
             return ""
-        wrong, right, detail, parent = [], [], {}, {}
+        wrong, right, details, parent = [], [], {}, {}
         for name, spec in terms.items():
             params, defines, within = mistakes.term_parts(spec)
             if defines and not mistakes.calls_all(model.code, defines):
@@ -366,15 +382,14 @@ class Explainer(TraceEvidence):
                 right.append(name)
             else:
                 wrong.append(name)
-                detail[name] = diagnosis.shape(term_check, angles, want, mine) or kind_of(
+                details[name] = diagnosis.shape(term_check, angles, want, mine) or kind_of(
                     check
                 ).lobe(term_check, angles, want, mine, exercise.model_name)
         wrong, right = _finest(wrong, right, parent)
         if not wrong or not right:
             return ""
-        return diagnosis.terms_sentence(
-            wrong, right, detail.get(wrong[0], "") if len(wrong) == 1 else ""
-        )
+        shape = details.get(wrong[0], "") if len(wrong) == 1 and detail else ""
+        return diagnosis.terms_sentence(wrong, right, shape)
 
     def swaps(self, check: Check, model: Model, angles: np.ndarray, expected) -> str:
         """L and V exchanged, or the tangent axes X and Y: render the swap and compare."""
