@@ -46,8 +46,11 @@ class TraceEvidence:
         same quantity as the student's (a variable of the same name, or the same function's
         result)? Where the trace found no fault in the student's code, nothing contradicts
         the hint (True); where it did, the hint must go wrong at the same place."""
-        if located.finding is None or located.solution is None or located.finding.point.loop:
-            return True  # nothing the trace says contradicts the hint (a loop's is unsure)
+        if located.exit or located.finding is None or located.solution is None:
+            if not located.exit or located.solution is None:
+                return True  # nothing the trace says contradicts the hint
+        elif located.finding.point.loop:
+            return True  # a loop's values are its last pass's: the trace is unsure
         variant = next((v for v in self.variants(exercise) if v.key == key), None)
         if key == mistakes.STUB:  # said to the stub as handed out, not to code written in it
             stub = variant.code if variant is not None else ""
@@ -59,7 +62,11 @@ class TraceEvidence:
         theirs = self._trace(
             exercise, model, check, located.angles, solution_text, view=located.view
         )
-        if theirs is None or localise.early_exit(theirs, located.solution):
+        if theirs is None:
+            return False
+        if located.exit:  # the hint stands where its own program lacks the exit too
+            return bool(localise.early_exit(theirs, located.solution))
+        if localise.early_exit(theirs, located.solution):
             return False  # the variant's difference is a missing exit, the student's is not
         other = localise.locate(theirs, located.solution)
         # The trace found the student's fault: the hint is said only where its own program
@@ -105,7 +112,7 @@ class TraceEvidence:
             return Located()
         exit_missing = localise.early_exit(mine, wanted)
         if exit_missing:
-            return Located(exit_missing, exit=True)
+            return Located(exit_missing, None, wanted, angles, exit=True, view=harness)
         finding = localise.locate(mine, wanted)
         said = localise.sentence(finding, source, label_of(path)) if finding else ""
         if exercise.wrapper:  # a term exercise: the student's F, D or G beside the solution's

@@ -327,7 +327,9 @@ class Explainer(TraceEvidence):
                 traceback.print_exc()
             located = Located()
         where = located.text
-        if located.exit:  # stronger than any stored hint
+        if located.exit:  # stronger than any stored hint, which may say it in its words
+            if key in hints and self.consistent(exercise, check, key, located):
+                return diagnosis.sentence(hints[key]) + f" Where: {where}."
             return diagnosis.sentence(where)
         if key in hints and self.consistent(exercise, check, key, located):
             if key == mistakes.STUB:  # the file as handed out: nothing of theirs to locate
@@ -343,7 +345,9 @@ class Explainer(TraceEvidence):
         # term is wrong, or L and V swapped (the shape of the values alone may mislead).
         angles = kind.angles(check)
         said = ""
-        if angles is not None and located.finding is not None and not located.finding.relation:
+        if kind.by_program:  # a sampler's: which of sampler and pdf is wrong, evaluated
+            said = kind.explain(self, exercise, check, model, expected, got, live)
+        elif angles is not None and located.finding is not None and not located.finding.relation:
             said = self.terms(exercise, check, model, angles, live, detail=False)
         return (diagnosis.sentence(said) + located_only).strip()
 
