@@ -20,6 +20,7 @@ import numpy as np
 from lab.grading.relations import (
     AGREE,
     MIN_ROWS,
+    Matcher,
     Quantity,
     agree,
     matches,
@@ -105,37 +106,38 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     if both.sum() < MIN_ROWS or agree(mine_f[both], want_f[both]).mean() >= AGREE:
         return None
     known = quantities(solution)
+    matcher = Matcher(known)
     points = student.traced.points
     right, ran, values = {}, {}, {}
     for p in points:
         v, r, _ = student.value(p.slot)
         values[p.slot], ran[p.slot] = (v, r), bool(r.any())
+        if not ran[p.slot]:
+            right[p.slot] = False
+            continue
+        hits = matcher.which(v, r)
         # A value kept under one of the solution's names (H) but equal to another of its
         # quantities (L + V) is no match: the name says what was meant.
-        same_name = [
-            q
-            for q in known
+        same_name = {
+            i
+            for i, q in enumerate(known)
             if p.name
             and q.name
             and _plain(q.name) == _plain(p.name)
             and shared_rows(r, q) is not None
-        ]
+        }
         # A function's result must match the solution's result of that function.
-        results = [
-            q
-            for q, s in zip(known, solution.traced.points, strict=True)
+        results = {
+            i
+            for i, s in enumerate(solution.traced.points)
             if not p.name
             and p.statement
             and s.statement
             and not s.name
             and s.function == p.function
-        ]
-        pool = results or known
-        right[p.slot] = (
-            ran[p.slot]
-            and any(matches(v, r, q) for q in pool)
-            and (not same_name or any(matches(v, r, q) for q in same_name))
-        )
+        }
+        pool = results or set(range(len(known)))
+        right[p.slot] = bool(hits & pool) and (not same_name or bool(hits & same_name))
     good = _good(points, right, ran)
     faults = [
         p

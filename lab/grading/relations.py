@@ -64,6 +64,15 @@ def matches(values: np.ndarray, ran: np.ndarray, q: Quantity) -> bool:
 
 
 def varies(q: np.ndarray) -> bool:
+    """Do the values change over the rows (more than float32 noise)?"""
+    q = np.asarray(q, np.float64)
+    if q.size == 0 or not np.isfinite(q).all():
+        return bool(q.size) and _varies_slow(q)
+    spread = float(q.std())
+    return spread > 1e-4 * (1.0 + float(np.abs(q).mean()))
+
+
+def _varies_slow(q: np.ndarray) -> bool:
     spread = np.nanstd(q)
     return bool(np.isfinite(spread) and spread > 1e-4 * (1.0 + np.nanmean(np.abs(q))))
 
@@ -142,17 +151,56 @@ def term(
         big = (np.abs(r) > 1e-6).all(axis=-1)
         if big.sum() < MIN_ROWS:
             continue
-        c = float(np.median(diff[big] / r[big]))
+        ratios = diff[big] / r[big]
+        c = float(np.median(ratios))
         k = c + 1.0
-        if np.isfinite(c) and abs(c) > 1e-3 and ok(q + c * r):
+        steady = np.abs(ratios - c).mean() <= 0.05 * abs(c)  # a first look, before `ok`
+        if np.isfinite(c) and abs(c) > 1e-3 and steady and ok(q + c * r):
             if abs(k) < 1e-3:
                 return f"lacks the term {other.label} that {meant.label} has"
             if factor_name(k) != f"{k:.3g}":  # a named factor: π, 2, 1/2...
                 return f"is {meant.label} with its term {other.label} multiplied by " + (
                     factor_name(k)
                 )
-        if varies(r) and ok(q * r):
+        if not varies(r):
+            continue
+        if ok(q * r):
             return f"is {meant.label} multiplied by {other.label}"
-        if varies(r) and ok(q / np.where(r == 0, np.nan, r)):
+        if ok(q / np.where(r == 0, np.nan, r)):
             return f"is {meant.label} divided by {other.label}"
     return ""
+
+
+class Matcher:
+    """`matches` against many quantities at once (one array operation per student value,
+    not one per pair: a trace has a hundred values and the solution a hundred more)."""
+
+    def __init__(self, quantities: list[Quantity]) -> None:
+        self.quantities = quantities
+        self.groups: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
+        for count in {q.values.shape[1] for q in quantities}:
+            index = np.array([i for i, q in enumerate(quantities) if q.values.shape[1] == count])
+            values = np.stack([quantities[i].values for i in index])  # (Q, rows, count)
+            ran = np.stack([quantities[i].ran for i in index])
+            ran &= np.isfinite(values).all(axis=-1)
+            with np.errstate(invalid="ignore", over="ignore"):
+                total = np.where(ran[..., None], np.abs(values), 0.0).sum(axis=(1, 2))
+            size = total / np.maximum(ran.sum(axis=1) * count, 1)
+            self.groups[count] = (index, values, ran, np.nan_to_num(size))
+
+    def which(self, values: np.ndarray, ran: np.ndarray) -> set[int]:
+        """Indices of the quantities the values match (as `matches` would say)."""
+        group = self.groups.get(values.shape[1])
+        if group is None:
+            return set()
+        index, known, known_ran, size = group
+        joint = ran[None, :] & known_ran
+        count = joint.sum(axis=1)
+        enough = count >= max(MIN_ROWS, 0.25 * ran.sum())
+        with np.errstate(invalid="ignore", over="ignore"):
+            a = values[None]
+            tol = RTOL * np.maximum(np.abs(a), np.abs(known)) + ATOL * (1.0 + size)[:, None, None]
+            close = (np.abs(a - known) <= tol) | (np.isnan(a) & np.isnan(known))
+        agreeing = (close.all(axis=-1) & joint).sum(axis=1)
+        hit = enough & (agreeing >= AGREE * np.maximum(count, 1))
+        return {int(i) for i in index[hit]}
