@@ -74,7 +74,9 @@ def quantities(trace: Trace) -> list[Quantity]:
         label = SPOKEN.get(point.name, point.name) if point.name else spoken(point.text)
         if point.statement and not point.name:
             label = spoken(point.text.removeprefix("return").strip().rstrip(";"))
-        out.append(Quantity(label, values, ran, point.name))
+        # what a named quantity is computed as: `vec3 H = normalize(L + V);` -> the right side
+        text = spoken(point.text.split("=", 1)[1].strip().rstrip(";")) if "=" in point.text else ""
+        out.append(Quantity(label, values, ran, point.name, text if point.name else ""))
     return out
 
 
@@ -271,6 +273,8 @@ def _describe(
 ) -> str:
     """A relation of the point's values to a quantity it plays the part of, in words."""
     named = next((q.label for q in meant), "")
+    if meant and p.name and _plain(meant[0].name) == _plain(p.name) and meant[0].text:
+        named = meant[0].text  # "H equals L + V, not normalize(L + V)", not "... not H"
     for q in geo:  # another direction's dot product, an angle for its cosine...
         if matches(v, r, q) and q.label != named:
             return f"equals {q.label}" + (f", not {named}" if named else "")

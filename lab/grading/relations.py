@@ -36,6 +36,7 @@ class Quantity:
     values: np.ndarray  # (rows, components)
     ran: np.ndarray  # bool (rows,)
     name: str = ""  # the variable it is kept in, if any
+    text: str = ""  # what it is computed as, for a named quantity
 
 
 def agree(a: np.ndarray, b: np.ndarray, scale: float | None = None) -> np.ndarray:
