@@ -70,13 +70,14 @@ class TraceEvidence:
             return False  # the variant's difference is a missing exit, the student's is not
         other = localise.locate(theirs, located.solution)
         # The trace found the student's fault: the hint is said only where its own program
-        # goes wrong at the same quantity, or its first wrong value is one the student's
-        # code computes too (the same slip, written another way).
+        # goes wrong at the same quantity, or its first wrong value is the student's first
+        # wrong value (the same slip, written another way).
         if other is None:
             return False
         if localise.target(other) == localise.target(located.finding):
             return True
-        return located.mine is not None and localise.computes(located.mine, theirs, other.point)
+        mine = located.mine
+        return mine is not None and localise.same_slip(mine, located.finding, theirs, other)
 
     def locate(self, exercise: Exercise, check: Check, model: Model, reading=None) -> Located:
         """The line where the student's values first part from the solution's, and how

@@ -80,9 +80,15 @@ def quantities(trace: Trace) -> list[Quantity]:
     return out
 
 
-def _good(points: list[Point], right: dict[int, bool], ran: dict[int, bool]) -> dict[int, bool]:
+def _good(
+    points: list[Point],
+    right: dict[int, bool],
+    ran: dict[int, bool],
+    telling: dict[int, bool],
+) -> dict[int, bool]:
     """Right, or read by something good: a helper value the solution never names is good
-    when what is computed from it matches."""
+    when what is computed from it matches (and changes with it: a constant, such as F = 1
+    with Fresnel switched off, vouches for nothing it reads)."""
     consumers: dict[int, list[int]] = {}
     for p in points:
         for d in p.deps:
@@ -93,7 +99,7 @@ def _good(points: list[Point], right: dict[int, bool], ran: dict[int, bool]) -> 
         good[p.slot] = (
             right[p.slot]
             or not ran[p.slot]
-            or any(good.get(c, False) and ran[c] for c in consumers.get(p.slot, []))
+            or any(good.get(c, False) and telling[c] for c in consumers.get(p.slot, []))
         )
     return good
 
@@ -110,10 +116,11 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     known = quantities(solution)
     matcher = Matcher(known)
     points = student.traced.points
-    right, ran, values = {}, {}, {}
+    right, ran, values, telling = {}, {}, {}, {}
     for p in points:
         v, r, _ = student.value(p.slot)
         values[p.slot], ran[p.slot] = (v, r), bool(r.any())
+        telling[p.slot] = ran[p.slot] and varies(v[r])
         if not ran[p.slot]:
             right[p.slot] = False
             continue
@@ -140,7 +147,7 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
         }
         pool = results or set(range(len(known)))
         right[p.slot] = bool(hits & pool) and (not same_name or bool(hits & same_name))
-    good = _good(points, right, ran)
+    good = _good(points, right, ran, telling)
     faults = [
         p
         for p in points
@@ -197,13 +204,14 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     return _with_calls(found, points)
 
 
-def computes(student: Trace, other: Trace, point: Point) -> bool:
-    """Does the student's code compute, somewhere, the values of `other`'s point?"""
-    values, ran, _ = other.value(point.slot)
+def same_slip(student: Trace, mine: Finding, other: Trace, theirs: Finding) -> bool:
+    """Is the student's first wrong value (or its statement's) the other program's first
+    wrong value: the same slip, written another way?"""
+    values, ran, _ = other.value(theirs.point.slot)
     if not ran.any() or not varies(values[ran]):
         return False  # a constant proves nothing
-    wanted = Quantity(point.text, values, ran)
-    for p in student.traced.points:
+    wanted = Quantity(theirs.point.text, values, ran)
+    for p in {mine.point.slot: mine.point, mine.statement.slot: mine.statement}.values():
         v, r, _ = student.value(p.slot)
         if matches(v, r, wanted):
             return True
@@ -387,6 +395,10 @@ def term_rows(student: Trace, solution: Trace, functions: list[str]) -> str:
     return "; ".join(out)
 
 
+def _start(point: Point) -> int:
+    return point.start
+
+
 def early_exit(student: Trace, solution: Trace) -> str:
     """Where the results differ only at pairs for which the solution leaves its function
     early with a constant (`return vec3(0.0)` below the horizon) and the student's code
@@ -397,9 +409,11 @@ def early_exit(student: Trace, solution: Trace) -> str:
     wrong = both & ~agree(mine, want)
     if wrong.sum() < 3:
         return ""
-    for point in solution.traced.points:
-        if not point.statement or point.name or point.head == "parameter":
-            continue
+    returns = [p for p in solution.traced.points if p.statement and not p.name]
+    returns = [p for p in returns if p.head != "parameter"]
+    for point in returns:
+        if point is max((p for p in returns if p.function == point.function), key=_start):
+            continue  # a function's last return is where it ends, not an early exit
         values, ran, _ = solution.value(point.slot)
         called = np.zeros_like(ran)  # where its function ran at all: an early exit is a
         for other in solution.traced.points:  # part of those pairs, not all of them
