@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from lab.grading.checks import Grader, Prepared, hidden_variant, prepare
+from lab.grading.checks import Grader, Submission, hidden_variant, prepare
 from lab.grading.exercise import Exercise, find_exercises, load_exercise
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -50,7 +50,7 @@ def grader() -> Grader:
 
 
 def scores(
-    grader: Grader, exercise: Exercise, programs: dict[str, Prepared], seed: int | None
+    grader: Grader, exercise: Exercise, programs: dict[str, Submission], seed: int | None
 ) -> dict[str, tuple[float, list[str]]]:
     """Each program's score at one setting (None: reference mode) and its failed checks."""
     out: dict[str, tuple[float, list[str]]] = {name: (0.0, []) for name in programs}
@@ -66,7 +66,7 @@ def scores(
     return out
 
 
-def prepared(exercise: Exercise, paths: dict[str, Path]) -> dict[str, Prepared]:
+def prepared(exercise: Exercise, paths: dict[str, Path]) -> dict[str, Submission]:
     out = {}
     for name, path in paths.items():
         ready = prepare(exercise, path)

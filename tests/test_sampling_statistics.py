@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from lab.grading import sampling
-from lab.grading.checks import Grader, Prepared, hidden_variant, prepare
+from lab.grading.checks import Grader, Submission, hidden_variant, prepare
 from lab.grading.exercise import load_exercise
 from lab.grading.kinds import kind_of
 from lab.ibl import chisquare
@@ -40,7 +40,7 @@ def grader(ctx) -> Grader:
     return Grader()  # no explainer: the diagnosis is not what is tested here
 
 
-def ready(paths: dict[str, Path]) -> dict[str, Prepared]:
+def ready(paths: dict[str, Path]) -> dict[str, Submission]:
     out = {}
     for name, path in paths.items():
         done = prepare(EXERCISE, path)
@@ -55,7 +55,7 @@ def correct() -> dict[str, Path]:
     return found
 
 
-def results(grader: Grader, programs: dict[str, Prepared], seed: int | None) -> dict:
+def results(grader: Grader, programs: dict[str, Submission], seed: int | None) -> dict:
     """{program: {check name: CheckResult}} at one setting (None: the committed one)."""
     out: dict[str, dict] = {name: {} for name in programs}
     solution = grader.solution_model(EXERCISE)

@@ -49,7 +49,6 @@ __all__ = [
     "VALUES_FILE",
     "CheckResult",
     "Grader",
-    "Prepared",
     "Submission",
     "expected_value",
     "failed",
@@ -157,9 +156,6 @@ class Submission:
     instrumented: dict = field(default_factory=dict)  # its instrumented code, by part
 
 
-Prepared = Submission  # the name grading code used before
-
-
 def prepare(exercise: Exercise, submission: Path, root: Path | None = None) -> Submission:
     """Read and build the submission (no GL needed: a worker does this while its context is
     made). The GLSL ES compile runs beside the checks; its warnings go with the last one."""
@@ -230,7 +226,7 @@ class Grader:
         seed: int | None = None,
         skip: frozenset[str] = frozenset(),
         root: Path | None = None,
-        prepared: Prepared | None = None,
+        prepared: Submission | None = None,
     ) -> Iterator[CheckResult]:
         """Grade every check not in `skip`, yielding each result as soon as it is known.
 

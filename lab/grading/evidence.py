@@ -4,13 +4,12 @@ solution's, a missing early exit, and whether a stored hint agrees with them."""
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from lab.glsl import ShaderCompileError, label_of
+from lab.glsl import COMMENTS, ShaderCompileError, label_of
 from lab.grading import localise, mistakes, trace
 from lab.grading.exercise import Check, Exercise, SubmissionError
 from lab.grading.kinds import kind_of
@@ -33,8 +32,7 @@ class Located:
 
 def _bare(code: str) -> str:
     """Code without comments and white space: a file as handed out, edited or not."""
-    code = re.sub(r"/\*.*?\*/|//[^\n]*", "", code, flags=re.S)
-    return "".join(code.split())
+    return "".join(COMMENTS.sub("", code).split())
 
 
 class TraceEvidence:

@@ -17,6 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from lab.grading.compare import fmt_rgb
+from lab.grading.mistakes import SPOKEN
 from lab.grading.relations import (
     AGREE,
     MIN_ROWS,
@@ -33,17 +35,6 @@ from lab.grading.trace import Point, Trace, geometry
 
 EXIT_START = "your function differs from the solution's only where"
 CHAIN = {"*": "product", "/": "product", "+": "sum", "-": "sum"}
-SPOKEN = {
-    "NoL": "N·L",
-    "NoV": "N·V",
-    "NoH": "N·H",
-    "VoH": "V·H",
-    "LoH": "L·H",
-    "RoV": "R·V",
-    "LoV": "L·V",
-    "INV_PI": "1/π",
-    "PI": "π",
-}
 
 
 @dataclass
@@ -360,9 +351,8 @@ def returned(trace: Trace, function: str) -> tuple[np.ndarray, np.ndarray] | Non
 
 
 def _shown(values: np.ndarray) -> str:
-    if values.shape[-1] == 1:
-        return f"{float(values[0]):.4g}"
-    return "(" + ", ".join(f"{float(c):.4g}" for c in values) + ")"
+    """A value as the grader's rows print it (a grey colour as one number)."""
+    return fmt_rgb(values) if values.shape[-1] == 3 else f"{float(values[0]):.4g}"
 
 
 def term_rows(student: Trace, solution: Trace, functions: list[str]) -> str:

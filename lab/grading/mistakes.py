@@ -52,6 +52,7 @@ SPOKEN = {
     "VoH": "V·H",
     "LoH": "L·H",
     "RoV": "R·V",
+    "LoV": "L·V",
     "INV_PI": "1/π",
     "PI": "π",
 }

@@ -415,6 +415,7 @@ def run(
         (len(angles), 1), 4, data.astype(np.float32).tobytes(), dtype="f4"
     )
     texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    previous = renderer._last  # the checks' loop guard reads the last view drawn: theirs
     try:
         texture.use(0)
         fbo = renderer._run(instrumented, view, values, (len(angles), rows), {"u_angles": 0})
@@ -422,6 +423,7 @@ def run(
     except (ShaderCompileError, moderngl.Error):
         return None
     finally:
+        renderer._last = previous
         texture.release()
     values = data.reshape(rows, len(angles), 4).copy()
     return Trace(traced, values, angles, directions=view in (VIEW,))

@@ -5,17 +5,11 @@
 // coloured lights (one to the side, one behind the sphere, one low on the other side), an
 // ambient light, and past `count` a light that is not in the scene, as in
 // grade_illumination.glsl, so that code which ignores count shows it.
-uniform highp sampler2D u_angles;
+// @include views/trace_common.glsl
 out vec4 frag_color;
 
-vec3 lab_trace_direction(float theta, float phi) {
-    float s = sin(theta);
-    return vec3(s * cos(phi), s * sin(phi), cos(theta));
-}
-
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 a = texelFetch(u_angles, ivec2(pixel.x, 0), 0);
+    vec4 a = lab_trace_begin();
     vec3 N = lab_trace_direction(a.x, a.y);
     vec3 V = vec3(0.0, 0.0, 1.0);
     vec3 dirs[8];
@@ -30,8 +24,5 @@ void main() {
     rgbs[1] = vec3(0.5, 0.7, 1.2);
     dirs[2] = normalize(vec3(-0.8, -0.5, 0.2));
     rgbs[2] = vec3(0.7, 1.1, 0.6);
-    lab_trace_slot = pixel.y;
-    lab_trace_value = vec4(0.0);
-    vec3 f = phong_illumination(N, V, vec3(0.2, 0.15, 0.1), dirs, rgbs, 3);
-    frag_color = pixel.y == 0 ? vec4(f, 3.0) : lab_trace_value;
+    frag_color = lab_trace_end(phong_illumination(N, V, vec3(0.2, 0.15, 0.1), dirs, rgbs, 3));
 }
