@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from lab.grading.runner import Task
 
 HERE = Path(__file__).resolve().parent
+CASES = HERE  # the folder of cases.toml and the case files (--cases)
 ROOT = HERE.parent.parent  # the checkout whose grader and exercises grade (--root)
 
 QUOTE_MIN = 12  # characters of the fault's line a hint must quote to count as citing it
@@ -159,7 +160,7 @@ def grade(
             folder = Path(tmp) / f"{number:03d}"
             folder.mkdir()
             path = folder / exercise.student_file
-            shutil.copyfile(HERE / case.file, path)
+            shutil.copyfile(CASES / case.file, path)
             for mode in modes:
                 tasks[case.file, mode] = Task(exercise, path, seed=mode, root=folder)
         with Pool(workers, timeout=timeout) as pool:
@@ -259,12 +260,21 @@ def main(argv: list[str] | None = None) -> int:
         help="grade with another checkout's lab/ and exercises/ (e.g. an older commit "
         "unpacked with git archive); default: this one",
     )
+    parser.add_argument(
+        "--cases",
+        type=Path,
+        default=None,
+        help="another folder of held-out cases (its own cases.toml); default: this one",
+    )
     args = parser.parse_args(argv)
+    if args.cases is not None:
+        global CASES
+        CASES = args.cases.resolve()
     if args.root is not None:
         global ROOT
         ROOT = args.root.resolve()
 
-    cases = load_cases(HERE / "cases.toml")
+    cases = load_cases(CASES / "cases.toml")
     if args.exercise:
         cases = [c for c in cases if any(c.exercise.startswith(e) for e in args.exercise)]
     modes: list[int | None] = [None, *args.seed]
@@ -272,7 +282,7 @@ def main(argv: list[str] | None = None) -> int:
     tasks = grade(cases, modes, args.workers, args.timeout)
     outcomes = {}
     for case in cases:
-        source = (HERE / case.file).read_text(encoding="utf-8").split("\n")
+        source = (CASES / case.file).read_text(encoding="utf-8").split("\n")
         for mode in modes:
             outcomes[case.file, mode] = judge(case, tasks[case.file, mode], source)
 
