@@ -39,20 +39,27 @@ class TraceEvidence:
     """The Explainer's tracing part; it brings `grader`, `variants`, `variant_model` and a
     `_traces` cache (lab.grading.explain.Explainer)."""
 
-    def consistent(self, exercise: Exercise, check: Check, key: str, located: Located) -> bool:
+    def consistent(
+        self, exercise: Exercise, check: Check, key: str, located: Located, source: str = ""
+    ) -> bool:
         """Does the likely wrong program whose values the student's match go wrong at the
         same quantity as the student's (a variable of the same name, or the same function's
-        result)? Where the trace found no fault in the student's code, nothing contradicts
-        the hint (True); where it did, the hint must go wrong at the same place."""
+        result), with the same values there? Where the trace found no fault in the student's
+        code, nothing contradicts the hint (True); where it did, the hint must go wrong at
+        the same place the same way. `source`: the student's file, for the stub's hint."""
+        variant = next((v for v in self.variants(exercise) if v.key == key), None)
+        if key == mistakes.STUB:  # said to the file as handed out, never to work written in
+            # it whose values happen to resemble the stub's (a specular term that is 0 here)
+            stub = variant.code if variant is not None else ""
+            return bool(source) and _bare(source) == _bare(stub)
+        if located.exit and key.startswith(mistakes.MUTANT):
+            return False  # a generated edit's words ("which dot product") are vaguer than
+            # the missing exit the trace names, and may send the student to a factor
         if located.exit or located.finding is None or located.solution is None:
             if not located.exit or located.solution is None:
                 return True  # nothing the trace says contradicts the hint
         elif located.finding.point.loop:
             return True  # a loop's values are its last pass's: the trace is unsure
-        variant = next((v for v in self.variants(exercise) if v.key == key), None)
-        if key == mistakes.STUB:  # said to the stub as handed out, not to code written in it
-            stub = variant.code if variant is not None else ""
-            return located.source is not None and _bare(located.source) == _bare(stub)
         model = self.variant_model(exercise, variant) if variant is not None else None
         if model is None:
             return False
@@ -72,10 +79,14 @@ class TraceEvidence:
         # wrong value (the same slip, written another way).
         if other is None:
             return False
-        if localise.target(other) == localise.target(located.finding):
-            return True
         mine = located.mine
-        return mine is not None and localise.same_slip(mine, located.finding, theirs, other)
+        if mine is None:
+            return False
+        if localise.target(other) == localise.target(located.finding):
+            # the same quantity, gone wrong the same way: a different slip in the same line
+            # (1 − c⁵ for (1 − c)⁵) is not the stored one (f0 and 1 − f0 swapped)
+            return localise.same_value(mine, located.finding, theirs, other)
+        return localise.same_slip(mine, located.finding, theirs, other)
 
     def locate(self, exercise: Exercise, check: Check, model: Model, reading=None) -> Located:
         """The line where the student's values first part from the solution's, and how

@@ -327,11 +327,13 @@ class Explainer(TraceEvidence):
                 traceback.print_exc()
             located = Located()
         where = located.text
+        source = _source(model, reading)
+        said = key in hints and self.consistent(exercise, check, key, located, source)
         if located.exit:  # stronger than any stored hint, which may say it in its words
-            if key in hints and self.consistent(exercise, check, key, located):
+            if said:
                 return diagnosis.sentence(hints[key]) + f" Where: {where}."
             return diagnosis.sentence(where)
-        if key in hints and self.consistent(exercise, check, key, located):
+        if said:
             if key == mistakes.STUB:  # the file as handed out: nothing of theirs to locate
                 return diagnosis.sentence(hints[key])
             return diagnosis.sentence(hints[key]) + (f" Where: {where}." if where else "")
@@ -412,4 +414,15 @@ class Explainer(TraceEvidence):
         axes = renderer.eval_angles(model, check.params, mirrored)
         if diagnosis.same(check, axes, expected) and not diagnosis.same(check, axes, got):
             return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y"
+        return ""
+
+
+def _source(model: Model, reading=None) -> str:
+    """The student's file as read by the grader ('' where it cannot be read)."""
+    if reading is not None:
+        return reading.code
+    path = getattr(model, "sampler_path", None) or model.path
+    try:
+        return Path(path).read_text(encoding="utf-8") if path else ""
+    except (OSError, UnicodeError):
         return ""

@@ -209,6 +209,21 @@ def same_slip(student: Trace, mine: Finding, other: Trace, theirs: Finding) -> b
     return False
 
 
+def same_value(student: Trace, mine: Finding, other: Trace, theirs: Finding) -> bool:
+    """Do the two faults' values agree: the student's first wrong value (or its
+    statement's) with the other program's first wrong value (or its statement's)?"""
+    for q in {theirs.point.slot: theirs.point, theirs.statement.slot: theirs.statement}.values():
+        values, ran, _ = other.value(q.slot)
+        if not ran.any():
+            continue
+        wanted = Quantity(q.text, values, ran)
+        for p in {mine.point.slot: mine.point, mine.statement.slot: mine.statement}.values():
+            v, r, _ = student.value(p.slot)
+            if matches(v, r, wanted):
+                return True
+    return False
+
+
 def target(finding: Finding) -> str:
     """What a fault is a fault in: the variable its line sets (by its plain name), else the
     function whose result it is."""

@@ -38,6 +38,7 @@ VALUES = "diagnosis.npz"
 HINTS = "diagnosis.json"
 MAX_MUTANTS = 32  # per exercise: each one costs a compile when references are made
 STUB = "stub"  # the key of the stub's variant (its code is stored with the hints)
+MUTANT = "mutant."  # the prefix of generated single-edit variants' keys
 STUB_HINT = (
     "it gives just what the exercise's unfinished file (the stub) gives: the steps its TODO "
     "comments ask for are not done yet, or what they add does not reach the result"
@@ -145,7 +146,7 @@ def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
             return  # a function's signature: a compile error, not a mistake
         edits = ((old_line, new_line),)
         if all(v.edits != edits for v in found):
-            found.append(Variant(f"mutant.{len(found)}", hint, edits))
+            found.append(Variant(f"{MUTANT}{len(found)}", hint, edits))
 
     for match in re.finditer(r"\b(" + "|".join(present) + r")\b", body) if present else []:
         name = match.group(1)
