@@ -143,3 +143,20 @@ def test_purposes_and_ranges_fit_each_model(grader: Grader) -> None:
                 value = drawn.params[name]
                 for v in value if isinstance(value, tuple) else (value,):
                     assert low <= v <= high, (exercise.name, check.name, name, v)
+
+
+def test_same_keeps_a_group_of_parameters_equal(grader: Grader) -> None:
+    """`same` (exercise 05's isotropic probe): hidden mode draws one value for the group,
+    on every seed, while the other parameters still vary; a misspelled name stops."""
+    from dataclasses import replace
+
+    from lab.grading.spec import ExerciseError
+
+    exercise = next(e for e in EXERCISES if e.name.startswith("05"))
+    solution = grader.solution_model(exercise)
+    index, check = next((i, c) for i, c in enumerate(exercise.checks) if c.same)
+    drawn = [hidden_variant(check, solution, seed, index).params for seed in range(SEEDS)]
+    assert all(p["alpha_x"] == p["alpha_y"] for p in drawn)
+    assert len({p["alpha_x"] for p in drawn}) == SEEDS  # still drawn anew each seed
+    with pytest.raises(ExerciseError, match="alpha_z"):
+        hidden_variant(replace(check, same=(("alpha_x", "alpha_z"),)), solution, 1, index)

@@ -90,12 +90,13 @@ def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
     """
     rng = np.random.default_rng([seed, index])
     params = dict(check.params)
-    for name in check.ranges:
-        if name not in model.params:
-            raise ExerciseError(
-                f"check {check.name}: ranges names {name!r}, which is no parameter of the "
-                f"model ({', '.join(model.params)}); fix the name in exercise.toml"
-            )
+    for key, names in [("ranges", list(check.ranges)), ("same", sum(check.same, ()))]:
+        for name in names:
+            if name not in model.params:
+                raise ExerciseError(
+                    f"check {check.name}: {key} names {name!r}, which is no parameter of the "
+                    f"model ({', '.join(model.params)}); fix the name in exercise.toml"
+                )
     for name, param in model.params.items():
         low, high = check.ranges.get(name, (param.minimum, param.maximum))
         if low < param.minimum or high > param.maximum:
@@ -104,6 +105,9 @@ def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
                 f"range [{param.minimum:g}, {param.maximum:g}]; narrow it in exercise.toml"
             )
         params[name] = _drawn_param(rng, param, params.get(name, param.default), low, high)
+    for group in check.same:  # drawn once: the first name's value for the whole group
+        for name in group[1:]:
+            params[name] = params[group[0]]
     aimed = kind_of(check).purpose_of
     purposes = list(check.purpose)
     if aimed != "lights" or not purposes:

@@ -44,6 +44,9 @@ class Check:
     # Ranges hidden mode draws parameters from, where the header's whole range would make
     # this check meaningless or numerically extreme: {name: (low, high)}.
     ranges: dict = field(default_factory=dict)
+    # Groups of parameters that hidden mode draws once and shares (an isotropic check's
+    # alpha_x and alpha_y): [["alpha_x", "alpha_y"]].
+    same: tuple[tuple[str, ...], ...] = ()
     # The exercise's model in lab.reference and its header's defaults (set on loading,
     # with_reference): the value kinds measure how well-conditioned each row is with them.
     model: str = ""
@@ -106,6 +109,21 @@ def parse_ranges(raw, where: str) -> dict[str, tuple[float, float]]:
             )
         out[name] = (float(pair[0]), float(pair[1]))
     return out
+
+
+def parse_same(raw, where: str) -> tuple[tuple[str, ...], ...]:
+    """`same = [["alpha_x", "alpha_y"]]`: parameters hidden mode keeps equal."""
+    flat = isinstance(raw, list) and raw and all(isinstance(x, str) for x in raw)
+    groups = [raw] if flat else raw
+    ok = isinstance(groups, list) and all(
+        isinstance(g, list) and len(g) >= 2 and all(isinstance(n, str) for n in g) for g in groups
+    )
+    if not ok:
+        raise ExerciseError(
+            f'{where}: same is a list of parameter groups, for example same = [["alpha_x", '
+            '"alpha_y"]]: hidden mode draws one value for each group'
+        )
+    return tuple(tuple(g) for g in groups)
 
 
 def parse_lights(raw, where: str) -> list[Light]:

@@ -32,7 +32,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from lab.grading.result import CheckResult
-from lab.grading.spec import Check, ExerciseError, parse_lights, parse_purpose, parse_ranges
+from lab.grading.spec import (
+    Check,
+    ExerciseError,
+    parse_lights,
+    parse_purpose,
+    parse_ranges,
+    parse_same,
+)
 from lab.grading.visuals import difference_legend, polar_svg
 
 if TYPE_CHECKING:
@@ -71,6 +78,7 @@ class CheckKind:
         }
         here = f"{where}: check {table.get('name', '?')}"
         ranges = parse_ranges(table.pop("ranges", {}), here)
+        same = parse_same(table.pop("same", []), here)
         purpose: tuple[str, ...] = ()
         if "purpose" in table:
             count = {"lights": len(lights), "theta_i": 1}.get(self.purpose_of, 0)
@@ -87,6 +95,7 @@ class CheckKind:
             options=options,
             purpose=purpose,
             ranges=ranges,
+            same=same,
             **table,
         )
         self.validate(check, where)
