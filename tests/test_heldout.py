@@ -1,7 +1,8 @@
-"""The grader on held-out submissions (tests/heldout): written before the diagnosis was
-changed, measured before and after (tests/heldout/BEFORE.txt, AFTER.txt), added here only
-then. Every wrong one loses points, no correct rewrite does, and the hints name or
-localise most mistakes without pointing the wrong way."""
+"""The grader on held-out submissions (tests/heldout, and a second batch written
+independently in tests/heldout2): each written before the diagnosis was changed, measured
+before and after (BEFORE.txt, AFTER.txt in each folder), added here only then. Every wrong
+one loses points, no correct rewrite does, and the hints name or localise most mistakes
+without pointing the wrong way."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from pathlib import Path
 import pytest
 
 HERE = Path(__file__).resolve().parent / "heldout"
+BATCHES = (HERE, HERE.parent / "heldout2")
 sys.path.insert(0, str(HERE))
 import measure  # noqa: E402 - the held-out corpus's own reader and judge
 
@@ -25,19 +27,23 @@ WRONG_WAY_CEILING = 1
 
 @pytest.fixture(scope="module")
 def outcomes() -> dict:
-    cases = measure.load_cases(HERE / "cases.toml")
-    tasks = measure.grade(cases, list(MODES), workers=2, timeout=30.0)
     out = {}
-    for case in cases:
-        source = (HERE / case.file).read_text(encoding="utf-8").split("\n")
-        for mode in MODES:
-            out[case.file, mode] = (case, measure.judge(case, tasks[case.file, mode], source))
+    for batch in BATCHES:
+        measure.CASES = batch  # where grade() copies each case from
+        cases = measure.load_cases(batch / "cases.toml")
+        tasks = measure.grade(cases, list(MODES), workers=2, timeout=30.0)
+        for case in cases:
+            source = (batch / case.file).read_text(encoding="utf-8").split("\n")
+            for mode in MODES:
+                judged = measure.judge(case, tasks[case.file, mode], source)
+                out[batch.name, case.file, mode] = (case, judged)
+    measure.CASES = HERE
     return out
 
 
 @pytest.mark.parametrize("mode", MODES)
 def test_every_wrong_submission_loses_points_and_no_correct_one_does(outcomes, mode):
-    graded = [(c, o) for (_, m), (c, o) in outcomes.items() if m == mode]
+    graded = [(c, o) for (_, _, m), (c, o) in outcomes.items() if m == mode]
     lost_right = [c.label for c, o in graded if c.correct and o.lost]
     kept_wrong = [c.label for c, o in graded if not c.correct and not o.lost]
     assert lost_right == [] and kept_wrong == [], (lost_right, kept_wrong)
@@ -45,7 +51,7 @@ def test_every_wrong_submission_loses_points_and_no_correct_one_does(outcomes, m
 
 @pytest.mark.parametrize("mode", MODES)
 def test_hints_name_or_localise_most_mistakes_and_rarely_mislead(outcomes, mode):
-    wrong = [o for (_, m), (c, o) in outcomes.items() if m == mode and not c.correct]
+    wrong = [o for (_, _, m), (c, o) in outcomes.items() if m == mode and not c.correct]
     helped = sum(o.named or o.localised for o in wrong)
     misled = sum(o.wrong_way for o in wrong)
     print(f"\nmode {mode}: named or localised {helped}/{len(wrong)}, wrong way {misled}")
