@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from lab.grading import calls
 from lab.grading.compare import fmt_rgb
 from lab.grading.mistakes import SPOKEN
 from lab.grading.relations import (
@@ -26,6 +27,7 @@ from lab.grading.relations import (
     Quantity,
     agree,
     matches,
+    named_factor,
     relation,
     shared_rows,
     term,
@@ -45,6 +47,8 @@ class Finding:
     statement: Point
     relation: str
     calls: list[Point] = field(default_factory=list)  # where a parameter's function is called
+    through: Point | None = None  # a later value computed from the fault that shows how
+    through_relation: str = ""  # ... in words (its relation to what it stands for)
 
 
 def spoken(text: str) -> str:
@@ -185,14 +189,36 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
         chain.append(parent)
         current = parent
     geo = _geometry(student)
+    theirs = solution.traced.points
     for p in chain:
         v, r = values[p.slot]
-        meant = _counterparts(p, statement, solution.traced.points, known)
+        meant = _counterparts(p, statement, theirs, known)
         said = _describe(p, v, r, meant, known, geo)
+        said = said or calls.difference(p, student, _parts(p, statement, theirs, False), solution)
         if said:
             return _with_calls(Finding(p, statement, said), points)
     found = Finding(fault, statement if statement is not None else by_slot[fault.slot], "")
+    if not telling[fault.slot]:  # a wrong constant shows as a factor where it is used
+        found.through, found.through_relation = _scaled_later(
+            fault, points, good, values, theirs, known
+        )
     return _with_calls(found, points)
+
+
+def _scaled_later(fault: Point, points: list[Point], good, values, theirs, known):
+    """The first later value computed from a wrong constant that is a named factor (2, π,
+    1/2...) or the sign off what it stands for, with that relation; (None, '') if none.
+    Only a factor: other effects of a constant (a lobe's shape) say nothing of its cause."""
+    for d in calls.downstream(fault, points, good):
+        if d.line == fault.line or d.loop is not None:
+            continue
+        v, r = values[d.slot]
+        for q in _counterparts(d, _statement_of(d, points), theirs, known):
+            joint = shared_rows(r, q) if q.values.shape[1] == v.shape[1] else None
+            phrase = relation(v[joint], q.values[joint]) if joint is not None else ""
+            if phrase.startswith("has the opposite sign") or named_factor(phrase):
+                return d, phrase.format(q=q.label)
+    return None, ""
 
 
 def same_slip(student: Trace, mine: Finding, other: Trace, theirs: Finding) -> bool:
@@ -254,6 +280,15 @@ def _counterparts(
 ) -> list[Quantity]:
     """The solution's quantities that play p's part: the variable of the same name, the
     same function's result, and within those the subexpressions of the same operation."""
+    by_slot = {s.slot: q for s, q in zip(solution, known, strict=True)}
+    return [by_slot[s.slot] for s in _parts(p, statement, solution)]
+
+
+def _parts(
+    p: Point, statement: Point | None, solution: list[Point], same_head: bool = True
+) -> list[Point]:
+    """The solution's points that play p's part (see _counterparts); `same_head` False:
+    every point within the counterpart statements, whatever its operation."""
     if statement is None:
         return []
     if statement.name:
@@ -266,6 +301,10 @@ def _counterparts(
         pool = [
             s for s in solution if s.statement and not s.name and s.function == statement.function
         ][-1:]
+    if not same_head:
+        return pool + [
+            s for s in solution for t in pool if t.start <= s.start and s.end <= t.end and s != t
+        ]
     if p is not statement:
         pool = [
             s
@@ -273,8 +312,7 @@ def _counterparts(
             for t in pool
             if t.start <= s.start and s.end <= t.end and not s.statement and s.head == p.head
         ]
-    by_slot = {s.slot: q for s, q in zip(solution, known, strict=True)}
-    return [by_slot[s.slot] for s in pool]
+    return pool
 
 
 def _describe(
@@ -343,10 +381,17 @@ def sentence(finding: Finding, source: str, label: str) -> str:
         if expr and expr not in quoted[: len(expr) + 40]
         else (f", at `{expr}`" if expr else "")
     )
-    return (
+    said = (
         f"{where} (`{quoted}`){inside} is your first value that matches none of the "
         "solution's, though all it uses agrees with the solution"
     )
+    later = finding.through
+    if later is not None and 0 < later.line <= len(lines):
+        shown = " ".join(lines[later.line - 1].split())
+        what = f"`{later.text}`" if not later.statement else "its value"
+        said += f"; computed from it, line {later.line} (`{shown}`): {what} "
+        said += finding.through_relation
+    return said
 
 
 def returned(trace: Trace, function: str) -> tuple[np.ndarray, np.ndarray] | None:

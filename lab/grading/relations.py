@@ -85,6 +85,11 @@ def factor_name(c: float) -> str:
     return f"{c:.3g}"
 
 
+def named_factor(phrase: str) -> bool:
+    """Is a relation() phrase a named constant factor ('is 2 × {q}', 'is π × {q}')?"""
+    return any(phrase == f"is {name} × {{q}}" for _, name in NAMED_FACTORS)
+
+
 def relation(s: np.ndarray, q: np.ndarray) -> str:
     """How the student's values s relate to a quantity's q on the same rows: a phrase with
     {q} for the quantity's name, or '' when no simple relation holds nearly everywhere."""
