@@ -148,6 +148,7 @@ def term(
     """s is q with one of its terms or factors changed: a missing or extra term r
     (s = q + c r), or a factor r too many or too few (s = q r, s = q / r)."""
     diff, ok = s - q, judge(s, q)
+    usable = []
     for other in others:
         if other is meant or other.values.shape[1] not in (1, s.shape[1]):
             continue
@@ -155,8 +156,12 @@ def term(
         if not other.ran[joint].all() or not np.isfinite(r).all():
             continue
         big = (np.abs(r) > 1e-6).all(axis=-1)
-        if big.sum() < MIN_ROWS:
-            continue
+        if big.sum() >= MIN_ROWS:
+            usable.append((other, r, big))
+    # A whole term missing first: where ks = 0.5, a missing ks·(N·H)^ke is also "(N·H)^ke
+    # multiplied by 1/2", which reads as a factor slip the student never made.
+    scaled = []
+    for other, r, big in usable:
         ratios = diff[big] / r[big]
         c = float(np.median(ratios))
         k = c + 1.0
@@ -165,9 +170,11 @@ def term(
             if abs(k) < 1e-3:
                 return f"lacks the term {other.label} that {meant.label} has"
             if factor_name(k) != f"{k:.3g}":  # a named factor: π, 2, 1/2...
-                return f"is {meant.label} with its term {other.label} multiplied by " + (
-                    factor_name(k)
-                )
+                scaled.append(f"is {meant.label} with its term {other.label} multiplied by ")
+                scaled[-1] += factor_name(k)
+    if scaled:
+        return scaled[0]
+    for other, r, _ in usable:
         if not varies(r):
             continue
         if ok(q * r):
