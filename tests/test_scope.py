@@ -193,3 +193,15 @@ def test_the_grader_reports_the_refusal_for_every_check(ctx, tmp_path):
         assert result.points == 0 and f"{path.name}:{line}: rename 'lab_loop_sampler_0'" in (
             result.message
         ), result.message
+
+
+def test_discard_is_refused_with_its_line(tmp_path):
+    """discard throws the grader's pixel away: the probe would read 0 there and the hint
+    would blame a term; the student is told the line and what to write instead."""
+    guarded = "if (albedo.r > 2.0) discard;\n    return albedo * INV_PI;"
+    code = solution_with(LAMBERT, "return albedo * INV_PI;", guarded)
+    number = code.splitlines().index("    if (albedo.r > 2.0) discard;") + 1
+    message = refusal(LAMBERT, tmp_path, code)
+    assert f"{LAMBERT.student_file}:{number}: remove 'discard'" in message, message
+    code = "// we never discard anything\n" + LAMBERT.solution.read_text(encoding="utf-8")
+    build_model(LAMBERT, submit(LAMBERT, tmp_path, code), code)  # a comment is not code

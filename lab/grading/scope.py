@@ -316,6 +316,14 @@ def reserved(name: str, declared: bool) -> str:
 def check_names(code: str, label: str, library: dict[str, str], api: Iterable[str]) -> None:
     """Refuse (ScopeError) the first reserved name, library clash or library name outside
     `api` that the preprocessed `code` writes (uses are checked after declarations)."""
+    for token in tokenize(code):
+        if token.text == "discard":  # the pixel is thrown away: no value to grade there
+            raise ScopeError(
+                f"{label}:{token.line}: remove 'discard': the exercise's function returns a "
+                "value for every input (return vec3(0.0) where the answer is zero); discard "
+                "throws the grader's pixel away",
+                token.line,
+            )
     reading = read_code(code)
     api = list(api)
     given = ", ".join(api) if api else "nothing of the library"
