@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from lab.grading.exercise import load_exercise
+from lab.grading.exercise import find_exercises, load_exercise
 from lab.grading.runner import Pool, Task
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -210,6 +210,21 @@ def test_grade_all_writes_gradebook_and_reports(tmp_path):
     assert "file not found" in (reports / f"{file_stem('cy')}.html").read_text()
     assert '<img src="data:image/png;base64,' in (reports / f"{file_stem('ada')}.html").read_text()
     assert json.loads((reports / f"{file_stem('ada')}.json").read_text())["score"] == 10
+
+
+def test_an_upload_inside_its_own_folder_is_found_but_never_guessed(tmp_path):
+    """Gradescope keeps the folder a student uploaded (lab1/lambert.glsl): the one file of
+    the exercise's name in the student's folder is graded; with two copies none is picked."""
+    from lab.grading.cli import locate
+
+    exercise = next(e for e in find_exercises(ROOT / "exercises") if e.name == "01_lambert")
+    nested = tmp_path / "ada" / "lab1" / "final"
+    nested.mkdir(parents=True)
+    (nested / "lambert.glsl").write_text(SOLUTION, encoding="utf-8")
+    assert locate(tmp_path / "ada", exercise) == nested / "lambert.glsl"
+    (tmp_path / "ada" / "old").mkdir()
+    (tmp_path / "ada" / "old" / "lambert.glsl").write_text(SOLUTION, encoding="utf-8")
+    assert locate(tmp_path / "ada", exercise) == tmp_path / "ada" / "lambert.glsl"  # not found
 
 
 def test_classroom_workflow_template_runs_the_grader_and_reporter():

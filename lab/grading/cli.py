@@ -22,7 +22,9 @@ def _exercises(paths: list[str]):
 
 
 def locate(student: Path, exercise) -> Path:
-    """A student's file for an exercise: NN_topic/FILE, exercises/NN_topic/FILE or FILE."""
+    """A student's file for an exercise: NN_topic/FILE, exercises/NN_topic/FILE or FILE,
+    else the one file of that name anywhere in the student's folder (an upload that kept
+    its own folder, lab1/FILE), links not followed."""
     candidates = [
         student / exercise.name / exercise.student_file,
         student / "exercises" / exercise.name / exercise.student_file,
@@ -34,7 +36,24 @@ def locate(student: Path, exercise) -> Path:
                 return candidate
         except OSError:  # a name too long for the file system: the read will say so
             continue
-    return candidates[-1]
+    found = _anywhere(student, exercise.student_file)
+    return found[0] if len(found) == 1 else candidates[-1]
+
+
+def _anywhere(student: Path, name: str, limit: int = 2000) -> list[Path]:
+    """Files called `name` below `student` (links not followed; at most `limit` entries
+    looked at, so a huge upload costs nothing)."""
+    import os
+
+    found, seen = [], 0
+    for folder, dirs, files in os.walk(student, followlinks=False):
+        dirs[:] = [d for d in dirs if not d.startswith((".", "__MACOSX"))]
+        seen += len(files) + len(dirs)
+        if name in files:
+            found.append(Path(folder) / name)
+        if seen > limit:
+            break
+    return found
 
 
 def _output(path: str | None) -> Path | None:
