@@ -70,6 +70,25 @@ def _nice(value: float) -> float:
     return min((m * power for m in (1, 2, 5, 10)), key=lambda x: abs(x - value))
 
 
+SOLUTION, YOURS, FAILING = "#0072B2", "#D55E00", "#A65E00"
+
+
+def _polar_title(theta: np.ndarray, expected: np.ndarray, got: np.ndarray, light: float) -> str:
+    """The plot in words, for a screen reader: where each curve peaks and how high."""
+
+    def peak(values: np.ndarray) -> str:
+        i = int(np.argmax(values))
+        top = float(values[i])
+        if top - float(np.min(values)) <= 0.01 * abs(top):
+            return f"is flat at {top:.3g} sr⁻¹"
+        return f"peaks at {top:.3g} sr⁻¹ at θo {float(theta[i]):.0f}°"
+
+    return (
+        f"Polar plot of f_r, light at {light:.3g}°: the solution {peak(expected)}, "
+        f"yours {peak(got)}"
+    )
+
+
 def polar_svg(curve: dict, failing: list[int], width: int = 420) -> str:
     """Solution and submission in the plane of incidence, one linear scale, with rings.
 
@@ -90,17 +109,21 @@ def polar_svg(curve: dict, failing: list[int], width: int = 420) -> str:
     parts = [
         f'<svg class="polar" width="{width}" height="{width / 2 + 20:.0f}" '
         f'viewBox="0 0 {width} {width / 2 + 20:.0f}" role="img">',
-        f'<line x1="{cx - radius}" y1="{cy}" x2="{cx + radius}" y2="{cy}" stroke="#888"/>',
+        f"<title>{_polar_title(theta, expected, got, curve['theta_i'])}</title>",
+        f'<line x1="{cx - radius}" y1="{cy}" x2="{cx + radius}" y2="{cy}" stroke="#767676"/>',
     ]
     for value in rings:
         r = value / top * radius
         parts.append(
             f'<path d="M {cx - r:.1f} {cy} A {r:.1f} {r:.1f} 0 0 1 {cx + r:.1f} {cy}" '
-            'fill="none" stroke="#ddd"/>'
-            f'<text x="{cx + r + 2:.1f}" y="{cy + 13}" font-size="10" fill="#666">{value:g}</text>'
+            'fill="none" stroke="#888"/>'
+            f'<text x="{cx + r + 2:.1f}" y="{cy + 13}" font-size="10" '
+            f'fill="#595959">{value:g}</text>'
         )
     clipped = False
-    for values, colour in ((expected, "#1a7f37"), (got, "#c0392b")):
+    # Told apart by line style as well as colour (Okabe-Ito blue and vermillion, both
+    # readable under colour-blindness and at 3:1 or more on white).
+    for values, colour, dash in ((expected, SOLUTION, ""), (got, YOURS, ' stroke-dasharray="7 4"')):
         points = []
         for t, v in zip(theta, values, strict=True):
             r = max(v, 0.0) / top
@@ -109,7 +132,7 @@ def polar_svg(curve: dict, failing: list[int], width: int = 420) -> str:
             a = math.radians(t)
             points.append(f"{cx + r * math.sin(a):.1f},{cy - r * math.cos(a):.1f}")
         parts.append(
-            f'<polyline fill="none" stroke="{colour}" stroke-width="2" '
+            f'<polyline fill="none" stroke="{colour}" stroke-width="2.5"{dash} '
             f'points="{" ".join(points)}"/>'
         )
     for index in failing:  # a tick outside the rim in each failing direction
@@ -118,21 +141,21 @@ def polar_svg(curve: dict, failing: list[int], width: int = 420) -> str:
         parts.append(
             f'<line x1="{cx + r0 * math.sin(a):.1f}" y1="{cy - r0 * math.cos(a):.1f}" '
             f'x2="{cx + r1 * math.sin(a):.1f}" y2="{cy - r1 * math.cos(a):.1f}" '
-            'stroke="#f39c12" stroke-width="2"/>'
+            f'stroke="{FAILING}" stroke-width="2"/>'
         )
     a = math.radians(-curve["theta_i"])
     parts.append(
         f'<line x1="{cx}" y1="{cy}" x2="{cx + radius * math.sin(a):.1f}" '
-        f'y2="{cy - radius * math.cos(a):.1f}" stroke="#d4a017" stroke-dasharray="4 3"/>'
+        f'y2="{cy - radius * math.cos(a):.1f}" stroke="#8a6d00" stroke-dasharray="4 3"/>'
         f'<text x="{cx + 0.85 * radius * math.sin(a) + 4:.1f}" '
-        f'y="{cy - 0.85 * radius * math.cos(a) + 12:.1f}" font-size="11" fill="#a07c00">'
+        f'y="{cy - 0.85 * radius * math.cos(a) + 12:.1f}" font-size="11" fill="#8a6d00">'
         "light</text>"
         "</svg>"
     )
     legend = (
-        '<div class="caption"><span style="color:#1a7f37">━ solution</span> '
-        '<span style="color:#c0392b">━ yours</span> '
-        '<span style="color:#f39c12">▮ failing directions (outside the rim)</span><br>'
+        f'<div class="caption"><span style="color:{SOLUTION}">━━ solution (solid)</span> '
+        f'<span style="color:{YOURS}">╍╍ yours (dashed)</span> '
+        f'<span style="color:{FAILING}">▮ failing directions (ticks outside the rim)</span><br>'
         f"f_r (luminance) in the plane of incidence, light at {curve['theta_i']:.3g}° "
         f"on the left; rings at {', '.join(f'{v:g}' for v in rings)} sr⁻¹"
     )
