@@ -255,7 +255,7 @@ def html_report(tasks: list[Task], title: str = "Grading report") -> str:
         )
         body += [_check_html(r) for r in task.checks()]
     return (
-        f'<!DOCTYPE html><html><head><meta charset="utf-8">'
+        f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
         '<meta name="viewport" content="width=device-width, initial-scale=1">'
         f"<title>{e(title)}</title>"
         f"<style>{STYLE}</style></head><body>{''.join(body)}</body></html>"

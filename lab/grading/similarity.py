@@ -383,8 +383,9 @@ def write_csv(matches: list[Match], path: Path) -> None:
 def _side(doc: Document, lines: set[int]) -> str:
     rows = []
     for number, text in enumerate(doc.text.splitlines(), start=1):
-        mark = ' class="hit"' if number in lines else ""
-        rows.append(f"<tr{mark}><td>{number}</td><td>{html.escape(text)}</td></tr>")
+        # a shared line is marked in words too, not by its colour alone
+        mark, shared = (' class="hit"', " ≡") if number in lines else ("", "")
+        rows.append(f"<tr{mark}><td>{number}{shared}</td><td>{html.escape(text)}</td></tr>")
     return f"<div><h3>{html.escape(doc.label)}</h3><table>{''.join(rows)}</table></div>"
 
 
@@ -417,16 +418,17 @@ def write_html(matches: list[Match], path: Path) -> None:
     references highlighted; then the students equal to a reference, one row each."""
     pairs = [m for m in matches if m.pair]
     parts = [
-        "<!doctype html><meta charset='utf-8'><title>Similarity report</title><style>"
+        "<!doctype html><html lang='en'><meta charset='utf-8'><title>Similarity report</title>"
+        "<style>"
         "body{font-family:sans-serif;margin:1em}.pair{display:flex;gap:1em;flex-wrap:wrap}"
         ".pair>div{flex:1 1 28em;overflow-x:auto}table{border-collapse:collapse;"
-        "font:12px monospace}td:first-child{color:#888;padding-right:.6em;text-align:right}"
+        "font:12px monospace}td:first-child{color:#595959;padding-right:.6em;text-align:right}"
         "td{white-space:pre}tr.hit{background:#ffe08a}h2{font-size:110%;margin-top:2em}"
         ".refs td,.refs th{padding:0 .8em;text-align:left;color:inherit}"
         f"</style><h1>Similarity report</h1><p>Compared on {html.escape(method_note())}. "
         "A pair's similarity is the share of the smaller file's remainder (what is left "
         "beyond the references) found in the other; highlighted lines are shared code "
-        "that no reference has. Similar is not proof: read the code.</p>"
+        "that no reference has (≡ beside the line number). Similar is not proof: read the code.</p>"
     ]
     if not pairs:
         parts.append("<p>No pair of students shares enough code beyond the references.</p>")

@@ -165,6 +165,7 @@ class CheckKind:
 
     # -- report --------------------------------------------------------------------------
     captions: dict[str, str] = {}  # report captions of the result's images, by their label
+    alts: dict[str, str] = {}  # their text alternatives (default: the label)
 
     def figures(self, result: CheckResult) -> list[str]:
         """HTML <figure> elements for the report's section of this check: the result's
@@ -175,8 +176,9 @@ class CheckKind:
                 continue
             uri = "data:image/png;base64," + base64.b64encode(data).decode()
             legend = difference_legend(result.threshold) if label == "difference" else ""
+            alt = html.escape(self.alts.get(label, label))
             out.append(
-                f'<figure><img src="{uri}" alt="{html.escape(label)}"><figcaption>'
+                f'<figure><img src="{uri}" alt="{alt}"><figcaption>'
                 f"{html.escape(self.captions.get(label, label))}</figcaption>{legend}</figure>"
             )
         if result.curve:

@@ -48,6 +48,13 @@ class SphereKind(CheckKind):
         "difference": "yours − solution",
         "failing pixels": "failing pixels (orange)",
     }
+    alts = {  # what each image shows, for a screen reader
+        "reference": "the solution's render of the lit sphere",
+        "student": "your render of the lit sphere, from the same settings",
+        "difference": "your render minus the solution's: red where yours is too bright, "
+        "blue where too dark, pale where they agree",
+        "failing pixels": "the solution's render in grey with the pixels that fail in orange",
+    }
 
     # -- render --------------------------------------------------------------------------
     def render(self, renderer, model, check: Check) -> np.ndarray:
