@@ -7,6 +7,7 @@ ships its lecture demonstrations as presets in lab/app/presets/. Layout::
     title = "Phong exponents"           # shown in the window title and Presets menu
     notes = "what to try"                # shown in the status bar
     views = ["sphere", "polar"]          # the views to show (others are hidden)
+    layout = "sphere_polar"              # the focus layout presenter mode opens (LAYOUTS)
 
     [settings]                           # light and view settings (lab/views); others: defaults
     theta_i = 30.0
@@ -27,6 +28,7 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 from lab import views
@@ -40,6 +42,37 @@ else:  # pragma: no cover
 
 PRESET_DIR = Path(__file__).parent / "app" / "presets"
 MODEL_FILES = (".glsl", ".brdf")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """An arrangement of the app's views. The desk shows every chosen view in a grid beside
+    full controls (a laptop); a focus layout shows one or two views large beside compact
+    controls, with plot text for the back row of a lecture hall (a projector)."""
+
+    title: str
+    views: tuple[str, ...] = ()  # () for the desk: the preset's (or every) view
+    across: bool = False  # two views side by side (else the first above the second)
+    shares: tuple[float, ...] = (1.0,)  # each view's share of the room
+
+    @property
+    def focus(self) -> bool:
+        return bool(self.views)
+
+
+# The spheres are a wide row of small pictures: they go above a second view, which gets
+# most of the height. The 3D lobe and the object are square-ish: beside the spheres.
+LAYOUTS = {
+    "desk": Layout("Desk: every view, full controls"),
+    "sphere_polar": Layout("Spheres and polar plot", ("sphere", "polar"), False, (0.36, 0.64)),
+    "sphere_lobe3d": Layout("Spheres and 3D lobe", ("sphere", "lobe3d"), False, (0.36, 0.64)),
+    "sphere_slice": Layout("Spheres and (θh, θd) slice", ("sphere", "slice"), False, (0.36, 0.64)),
+    "sphere_albedo": Layout("Spheres and albedo", ("sphere", "albedo"), False, (0.36, 0.64)),
+    "sphere_object": Layout("Spheres and object", ("sphere", "object"), False, (0.36, 0.64)),
+    "polar_lobe3d": Layout("Polar plot and 3D lobe", ("polar", "lobe3d"), True, (0.55, 0.45)),
+    "ibl": Layout("Image-based lighting alone", ("ibl",)),
+}
+DEFAULT_FOCUS = "sphere_polar"
 
 
 def load_any(path_or_name: str | Path) -> Model:
@@ -227,6 +260,11 @@ def read_preset(path: str | Path) -> dict:
     unknown = [name for name in shown if name not in known]
     if unknown:
         raise ModelError(f"unknown view(s) {', '.join(unknown)}; known: {', '.join(known)}", path)
+    layout = data.get("layout", DEFAULT_FOCUS)
+    if layout not in LAYOUTS:
+        raise ModelError(
+            f"unknown layout {layout!r}; write one of {', '.join(map(repr, LAYOUTS))}", path
+        )
     return data
 
 

@@ -22,6 +22,7 @@ from PyQt6.QtWidgets import (
 )
 
 from lab import views
+from lab.app import layouts
 from lab.app.files import ModelFiles
 from lab.app.model_list import ModelList
 from lab.app.params import ParamPanel
@@ -30,14 +31,9 @@ from lab.app.state import LabState
 from lab.app.views.base import View
 from lab.app.widgets import SettingSlider
 from lab.models import ModelError, load_model, model_names
-from lab.presets import dump_toml, read_preset, shipped_presets
+from lab.presets import DEFAULT_FOCUS, LAYOUTS, dump_toml, read_preset, shipped_presets
 
 REFINE_DELAY_MS = 150
-QWIDGETSIZE_MAX = 16777215  # Qt's "no maximum" for a widget's size
-DOCK_AREAS = {
-    "right": Qt.DockWidgetArea.RightDockWidgetArea,
-    "bottom": Qt.DockWidgetArea.BottomDockWidgetArea,
-}
 
 
 class MainWindow(ModelFiles, QMainWindow):
@@ -56,7 +52,10 @@ class MainWindow(ModelFiles, QMainWindow):
         self.view_times: dict[str, list[float]] = {}  # each view's redraw, for the benchmark
         self.presets = shipped_presets()
         self.preset_index = -1
-        self.presenter = False
+        self.presenting = False  # a focus layout, large fonts, full screen (lab/app/layouts)
+        self.layout_name = "desk"
+        self.preset_layout = DEFAULT_FOCUS  # the focus layout presenter mode opens
+        self.desk_shown: list[str] = []  # the views the desk shows (kept while presenting)
         self.base_font = QFont(QApplication.font())
         self.setDockNestingEnabled(True)
         # The controls take the whole left edge: room for every parameter at 1280x800.
@@ -78,12 +77,14 @@ class MainWindow(ModelFiles, QMainWindow):
         self._init_files()
         self.statusBar().showMessage("ready")  # created now so the layout does not jump later
         self.resize(1280, 800)
+        self.desk_shown = [n for n, d in self.docks.items() if not d.isHidden()]
         self._fitted = False
 
     def showEvent(self, event) -> None:
         super().showEvent(event)
         if not self._fitted:  # dock sizes need the window's real size: once, when first shown
             self._fitted = True
+            layouts.keep_on_screen(self)  # 1280x800 is too large for a 1024x768 screen
             QTimer.singleShot(0, self.fit_docks)
 
     def resizeEvent(self, event) -> None:
@@ -150,88 +151,41 @@ class MainWindow(ModelFiles, QMainWindow):
         self.error_dock.hide()
 
     def _build_views(self) -> None:
-        # Every registered view gets a dock, placed by its spec: rows in its area stack
-        # (the spheres on top), the views of a row sit side by side.
-        rows: dict[tuple[str, int], list[QDockWidget]] = {}
-        specs: dict[tuple[str, int], list[views.ViewSpec]] = {}
-        tabs: list[tuple[str, QDockWidget]] = []
+        # Every registered view gets a dock, placed by its spec (layouts.place_desk).
+        rows: dict[tuple[str, int], list[views.ViewSpec]] = {}
         for spec in views.all_views():
             view = spec.widget_class()(self.lab, self.renderer)
             dock = QDockWidget(spec.title, self)
             dock.setObjectName(spec.name)
             dock.setWidget(view)
             dock.visibilityChanged.connect(lambda shown: shown and self.request())
-            self.addDockWidget(DOCK_AREAS[spec.dock[0]], dock)
+            dock.toggleViewAction().triggered.connect(
+                lambda shown, d=dock: layouts.view_opened(self, d, shown)
+            )
+            self.addDockWidget(layouts.DOCK_AREAS[spec.dock[0]], dock)
             self.views.append(view)
             self.docks[spec.name] = dock
-            if spec.tab_of:
-                tabs.append((spec.tab_of, dock))
-                continue
-            rows.setdefault(spec.dock, []).append(dock)
-            specs.setdefault(spec.dock, []).append(spec)
-        self.dock_rows = [row for _, row in sorted(rows.items())]
+            if not spec.tab_of:
+                rows.setdefault(spec.dock, []).append(spec)
         # The rows top down: the right area's (beside the controls), then the bottom's.
-        areas = list(DOCK_AREAS)
-        self.view_rows = [specs[k] for k in sorted(specs, key=lambda k: (areas.index(k[0]), k[1]))]
-        for area in DOCK_AREAS:
-            stack = [rows[key] for key in sorted(k for k in rows if k[0] == area)]
-            # The rows stacked first, then split into their views: each row spans the area.
-            for above, row in zip(stack, stack[1:], strict=False):
-                self.splitDockWidget(above[0], row[0], Qt.Orientation.Vertical)
-            for row in stack:
-                for left, right in zip(row, row[1:], strict=False):
-                    self.splitDockWidget(left, right, Qt.Orientation.Horizontal)
-        for owner, dock in tabs:  # a tab behind its owner, closed until the View menu opens it
-            self.tabifyDockWidget(self.docks[owner], dock)
-            self.docks[owner].raise_()
-            dock.hide()  # no tab bar either: the default layout keeps its sizes
-
-    def controls_cap(self) -> int:
-        """The widest the controls panel may be: a fifth of the screen when presenting."""
-        if not self.presenter:
-            return QWIDGETSIZE_MAX
-        return max(320, int(0.22 * max(self.width(), 800)))
+        areas = list(layouts.DOCK_AREAS)
+        self.view_rows = [rows[k] for k in sorted(rows, key=lambda k: (areas.index(k[0]), k[1]))]
+        layouts.place_desk(self)
+        for spec in views.all_views():  # closed until the View menu opens it
+            if spec.tab_of:
+                self.docks[spec.name].hide()  # no tab bar either: the layout keeps its sizes
 
     def fit_docks(self) -> None:
-        """Dock sizes for the window's size: controls 27 % of the width (at least 300 px),
-        the rest to the views, shared out by their specs' `size` (each row's height, each
-        view's width in its row)."""
-        width, height = max(self.width(), 800), max(self.height(), 600)
-        # Presenter mode: the views get the room, the (larger) controls a narrow column.
-        left = min(max(300, int(0.27 * width)), self.controls_cap())
-        self.controls_dock.setMaximumWidth(self.controls_cap())
-        QTimer.singleShot(0, self.fit_titles)  # tabs share their bar's width
-        if not self.view_rows:
-            return
-        dock = {spec.name: self.docks[spec.name] for row in self.view_rows for spec in row}
-        # Qt moves a separator only when the docks on both sides of it are named.
-        self.resizeDocks(
-            [self.controls_dock, dock[self.view_rows[0][0].name]],
-            [left, width - left],
-            Qt.Orientation.Horizontal,
-        )
-        # One dock per shown row (a preset may hide a row's first dock, or the whole row).
-        picked = []
-        for row in self.view_rows:
-            shown = [dock[s.name] for s in row if not dock[s.name].isHidden()]
-            if shown:
-                picked.append((shown[0], max(s.size[1] for s in row)))
-        if picked:
-            total = sum(share for _, share in picked)
-            self.resizeDocks(
-                [d for d, _ in picked],
-                [int(share / total * height) for _, share in picked],
-                Qt.Orientation.Vertical,
-            )
-        right = width - left
-        for row in self.view_rows:
-            if len(row) > 1:
-                total = sum(s.size[0] for s in row)
-                self.resizeDocks(
-                    [dock[s.name] for s in row],
-                    [int(s.size[0] / total * right) for s in row],
-                    Qt.Orientation.Horizontal,
-                )
+        """Dock sizes for the window's size and layout (lab/app/layouts.py)."""
+        layouts.fit_docks(self)
+
+    def set_layout(self, name: str) -> None:
+        """Switch to the desk or a focus layout (lab.presets.LAYOUTS)."""
+        layouts.set_layout(self, name)
+
+    def toggle_presenter(self) -> None:
+        """Presenter mode: the preset's focus layout at large fonts, full screen."""
+        layouts.toggle_presenter(self)
 
     def view(self, name: str) -> View:
         return next(v for v in self.views if v.name == name)
@@ -269,6 +223,18 @@ class MainWindow(ModelFiles, QMainWindow):
         self._action(
             view_menu, "Presenter mode (large fonts, full screen)", self.toggle_presenter, "F11"
         )
+        layout_menu = view_menu.addMenu("Layout")
+        self.layout_actions: dict[str, QAction] = {}
+        for index, (name, layout) in enumerate(LAYOUTS.items()):
+            action = self._action(
+                layout_menu,
+                layout.title,
+                lambda _=False, n=name: self.set_layout(n),
+                f"Ctrl+{index}",
+            )
+            action.setCheckable(True)
+            action.setChecked(name == self.layout_name)
+            self.layout_actions[name] = action
 
     def _action(self, menu, text: str, slot, shortcut: str | None = None) -> QAction:
         action = menu.addAction(text)
@@ -327,7 +293,12 @@ class MainWindow(ModelFiles, QMainWindow):
     def preset_dict(self, path: Path | None = None) -> dict:
         data = {"title": self.windowTitle().removeprefix("brdf-lab — ") or "brdf-lab state"}
         data.update(self.lab.to_dict(path.parent if path else None))
-        data["views"] = [name for name, dock in self.docks.items() if not dock.isHidden()]
+        data["views"] = (
+            list(self.desk_shown)
+            if self.presenting
+            else [name for name, dock in self.docks.items() if not dock.isHidden()]
+        )
+        data["layout"] = self.preset_layout
         return data
 
     def save_preset(self, path: str | Path) -> Path:
@@ -346,9 +317,15 @@ class MainWindow(ModelFiles, QMainWindow):
         data = read_preset(path)
         clamped = self.lab.from_dict(data, base=path.parent, where=str(path))
         shown = data.get("views")  # names checked by read_preset
+        self.preset_layout = data.get("layout", DEFAULT_FOCUS)
         if shown is not None:
-            for name, dock in self.docks.items():
-                dock.setVisible(name in shown)
+            self.desk_shown = list(shown)
+            if not self.presenting:
+                for name, dock in self.docks.items():
+                    dock.setVisible(name in shown)
+        if self.presenting:  # presenting the next preset: its own focus layout
+            self.set_layout(self.preset_layout)
+        else:
             QTimer.singleShot(0, self.fit_docks)  # the shown views share the room again
         for state in self.lab.models:
             if state.from_file:
@@ -394,43 +371,6 @@ class MainWindow(ModelFiles, QMainWindow):
             to = (self.preset_index + step) % len(self.presets)
         self.preset_index = to
         self.load_preset(self.presets[to])
-
-    def toggle_presenter(self) -> None:
-        self.presenter = not self.presenter
-        font = QFont(self.base_font)
-        font.setBold(False)  # set, not inherited: the docks' bold titles stay theirs
-        if self.presenter:
-            font.setPointSizeF(self.base_font.pointSizeF() * 1.6)
-        QApplication.setFont(font)
-        for widget in self.findChildren(QWidget):
-            widget.setFont(font)
-        for view in self.views:
-            view.apply_font(font)
-        # A dock paints its title in the platform's small title font unless its own font
-        # differs from the application's: bold titles at the presenter size.
-        title = QFont(font)
-        title.setBold(self.presenter)
-        for dock in self.findChildren(QDockWidget):
-            dock.setFont(title)
-        # Presenter fonts make a row of three views wider than a 1024-pixel projector: the
-        # third and later views of a row become tabs behind the second.
-        self.model_list.arrange(2 if self.presenter else 4)
-        for row in self.dock_rows:  # at most two views side by side; the others as tabs
-            for left, extra in zip(row[1:], row[2:], strict=False):
-                if self.presenter:
-                    self.tabifyDockWidget(row[1], extra)
-                else:
-                    self.splitDockWidget(left, extra, Qt.Orientation.Horizontal)
-            if self.presenter and len(row) > 2:
-                row[1].raise_()
-        if self.presenter:
-            self.showFullScreen()
-        else:
-            self.showNormal()
-        self.controls_dock.setMaximumWidth(self.controls_cap())
-        # The new fonts and the new window size want the docks laid out again.
-        QTimer.singleShot(50, self.fit_docks)
-        self.request()
 
     # -- export -------------------------------------------------------------------------
     def ask_export(self, view: View) -> None:

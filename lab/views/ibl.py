@@ -35,6 +35,7 @@ VIEW = ViewSpec(
         "ibl_exposure": Setting(0.0, -8.0, 8.0, "exposure", 0.1),
     },
     dock=("right", 0),
+    size=(1.0, 0.6),  # opened, its row takes this share: room for the picture and the plot
     short_title="IBL",
     tab_of="sphere",  # behind the lit spheres: its passes run only while it is in front
     widget="lab.app.views.ibl:IBLView",

@@ -22,6 +22,9 @@ from lab.models import ModelError
 
 LUMA = np.array(constants.LUMA)
 QWIDGETSIZE_MAX = (1 << 24) - 1
+# The smallest text inside a view when presenting: about 1/32 of a 768-row projector, what
+# a reader in the back of a lecture hall still reads (the slides' rule too).
+PLOT_TEXT_PX = 24
 BACKGROUND = (40, 40, 44)
 _BACKGROUND_BGR = np.array(BACKGROUND[::-1], np.float32) / 255.0
 
@@ -148,10 +151,13 @@ class View(QWidget):
             items += [item for item in widget.items() if isinstance(item, pg.PlotItem)]
         return items
 
-    def apply_font(self, font: QFont) -> None:
-        """Presenter mode: pyqtgraph draws its text with its own fonts; give them ours."""
-        small = QFont(font)
-        small.setPointSizeF(font.pointSizeF() * 0.9)
+    def apply_font(self, font: QFont, small: QFont | None = None) -> None:
+        """Presenter mode: pyqtgraph draws its text with its own fonts; give them `small`
+        (the plot text: 0.9 of `font` on the desk, at least PLOT_TEXT_PX when presenting).
+        Widgets that paint a picture's captions (`plot_text = True`) get it too."""
+        if small is None:
+            small = QFont(font)
+            small.setPointSizeF(font.pointSizeF() * 0.9)
         for plot in self.plot_items():
             for name in ("left", "bottom"):
                 axis = plot.getAxis(name)
@@ -160,7 +166,11 @@ class View(QWidget):
                 axis.setLabel(axis.labelText, axis.labelUnits)
                 if name == "left" and axis.fixedWidth is not None:
                     axis.setWidth(QFontMetrics(small).horizontalAdvance("0.00") * 2 + 8)
+            if plot.legend is not None:  # legends drawn later take the size too
+                plot.legend.setLabelTextSize(f"{small.pointSizeF():.1f}pt")
         for item in self.findChildren(QWidget):
+            if getattr(item, "plot_text", False):
+                item.setFont(small)
             item.update()
         for text in getattr(self, "texts", []):
             text.setFont(small)
@@ -243,6 +253,7 @@ class ImageRow(QWidget):
     """
 
     CAPTION = 20
+    plot_text = True  # captions in the plot font (View.apply_font)
 
     def __init__(self, on_drag=None):
         super().__init__()

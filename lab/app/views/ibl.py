@@ -10,23 +10,24 @@ mean. Passes run from the view's own timer while it is shown, so the window's re
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
 import pyqtgraph as pg
 from PyQt6.QtCore import Qt, QTimer
+from PyQt6.QtGui import QFontMetrics
 from PyQt6.QtWidgets import (
     QComboBox,
     QFileDialog,
     QHBoxLayout,
     QLabel,
     QPushButton,
-    QSizePolicy,
     QSplitter,
 )
 
 from lab.app.views.base import ImageRow, View, state_key, tonemap
-from lab.app.widgets import SettingCombo, SettingSlider
+from lab.app.widgets import LiveText, SettingCombo, SettingSlider
 from lab.constants import LUMA
 from lab.glsl import ShaderCompileError
 from lab.ibl import environments
@@ -45,6 +46,81 @@ from lab.views.ibl import COMPARE, ENVIRONMENTS, STRATEGIES, TARGETS
 SIZE = 192  # pixels per sphere: llvmpipe manages a few passes a second at this size
 PASS_SPP = 2
 COLORS = ("#ffb000", "#4aa3ff")
+SAMPLE_TARGETS = (16, 64, 256, 1024, 4096, 16384)  # the target menu's choices (per pixel)
+
+
+class LogAxis(pg.AxisItem):
+    """A log axis whose ticks are round values in the value's own unit ('64' samples,
+    '5 %' error), spaced so that no two labels touch. (pyqtgraph labels the minor ticks of
+    a log axis as powers, '6·10²' for a ratio of 0.06, and they overlap in large fonts.)"""
+
+    def __init__(self, orientation: str, base: float = 0.0, percent: bool = False):
+        super().__init__(orientation)
+        self.base, self.percent = base, percent  # base: ticks at its powers, else 1-2-5
+        self.enableAutoSIPrefix(False)
+
+    def text(self, value: float) -> str:
+        return f"{value * 100:.2g} %" if self.percent else f"{value:.4g}"
+
+    def candidates(self, low: float, high: float) -> list[float]:
+        """log10 of the round values between 10^low and 10^high."""
+        if self.base > 1:
+            step = math.log10(self.base)
+            return [k * step for k in range(math.floor(low / step), math.ceil(high / step) + 1)]
+        decades = range(math.floor(low), math.ceil(high) + 1)
+        return [k + math.log10(m) for k in decades for m in (1, 2, 5)]
+
+    def tickValues(self, minVal, maxVal, size):  # noqa: N802, N803 (pyqtgraph's names)
+        if not self.logMode:
+            return super().tickValues(minVal, maxVal, size)
+        low, high = sorted((minVal, maxVal))
+        font = self.style.get("tickFont") or self.font()
+        metrics = QFontMetrics(font)
+        per_decade = size / max(high - low, 1e-9)
+        kept: list[float] = []
+        for value in sorted(c for c in self.candidates(low, high) if low <= c <= high):
+            label = self.text(10.0**value)
+            room = (
+                metrics.height() * 1.4
+                if self.orientation in ("left", "right")
+                else metrics.horizontalAdvance(label) * 1.3 + 8
+            )
+            if not kept or (value - kept[-1]) * per_decade >= room:
+                kept.append(value)
+        if not kept:  # a range narrower than one step: its middle, as it is
+            kept = [(low + high) / 2]
+        return [(1.0, kept)]
+
+    def tickStrings(self, values, scale, spacing):  # noqa: N802 (pyqtgraph's name)
+        if not self.logMode:
+            return super().tickStrings(values, scale, spacing)
+        return [self.text(10.0**v) for v in values]
+
+
+class SamplesCombo(QComboBox):
+    """The sample target per pixel, bound to the `ibl_samples` setting."""
+
+    def __init__(self, settings):
+        super().__init__()
+        self.settings = settings
+        self.setToolTip("samples per pixel to stop at (each strategy, both halves)")
+        for count in SAMPLE_TARGETS:
+            self.addItem(f"{count} spp", count)
+        self.follow("ibl_samples")
+        self.currentIndexChanged.connect(
+            lambda i: i >= 0 and settings.set("ibl_samples", int(self.itemData(i)))
+        )
+        settings.changed.connect(self.follow)
+
+    def follow(self, name: str) -> None:
+        if name != "ibl_samples":
+            return
+        value = int(self.settings["ibl_samples"])
+        if self.findData(value) < 0:  # a preset's own target joins the menu
+            self.addItem(f"{value} spp", value)
+        self.blockSignals(True)
+        self.setCurrentIndex(self.findData(value))
+        self.blockSignals(False)
 
 
 class Run:
@@ -118,30 +194,36 @@ class IBLView(View):
         self.open_button.setToolTip("open an equirectangular .hdr or .exr environment")
         self.open_button.clicked.connect(self.open_file)
         combos[3].setToolTip("light the sphere, or the object view's shape (its yaw and pitch)")
+        self.samples = SamplesCombo(s)
         for widget in (combos[3], combos[0], self.open_button, combos[1], combos[2]):
             self.tools.addWidget(widget)
         second = QHBoxLayout()
         second.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
         second.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
+        second.addWidget(QLabel("target"))
+        second.addWidget(self.samples)
         self.second = second
         self.layout_.addLayout(second)
         self.canvas = ImageRow()
         self.canvas.setMinimumSize(64, 48)
-        self.status = QLabel("")
-        # One line whatever the width (the tooltip holds it all): the dock must stay short.
-        self.status.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Fixed)
-        self.plot = pg.PlotWidget()
+        # One line whatever the width: in a narrow dock the short form (count and gain),
+        # the tooltip holds it all. The dock must stay short on the desk.
+        self.status = LiveText(optional=False)
+        self.plot = pg.PlotWidget(
+            axisItems={"bottom": LogAxis("bottom", base=4), "left": LogAxis("left", percent=True)}
+        )
         self.plot.setMinimumSize(64, 48)
         self.plot.setLogMode(True, True)
         self.plot.setLabel("bottom", "samples per pixel")
-        self.plot.setLabel("left", "relative RMS error")
+        self.plot.setLabel("left", "RMS error")  # relative: its ticks in %
         self.plot.addLegend(offset=(-5, 5))
-        split = QSplitter()
-        split.addWidget(self.canvas)
-        split.addWidget(self.plot)
-        split.setSizes([600, 300])
-        self.layout_.addWidget(split, 1)
-        self.second.addWidget(self.status, 2)  # beside the sliders: one row less of height
+        # Picture and plot side by side in a wide view, the plot below in a tall one.
+        self.split = QSplitter()
+        self.split.addWidget(self.canvas)
+        self.split.addWidget(self.plot)
+        self.split.setSizes([600, 300])
+        self.layout_.addWidget(self.split, 1)
+        self.layout_.addWidget(self.status)
         self.user_file: Path | None = None
         self.environments: dict[str, Environment] = {}
         self.runs: list[Run] = []
@@ -150,6 +232,15 @@ class IBLView(View):
         self.timer = QTimer(self)
         self.timer.setSingleShot(True)
         self.timer.timeout.connect(self.step)
+
+    def resizeEvent(self, event) -> None:
+        wide = self.width() > 1.3 * self.height()
+        turn = Qt.Orientation.Horizontal if wide else Qt.Orientation.Vertical
+        if self.split.orientation() != turn:
+            self.split.setOrientation(turn)
+            length = self.width() if wide else self.height()
+            self.split.setSizes([int(0.62 * length), int(0.38 * length)])
+        super().resizeEvent(event)
 
     # -- inputs ---------------------------------------------------------------------------
     def open_file(self) -> None:
@@ -165,6 +256,7 @@ class IBLView(View):
             self.environments[str(path)] = Environment.load(path)
             self.user_file = Path(path)
         except environments.EnvironmentError as err:
+            self.status.short = None
             self.status.setText(f"cannot use that file: {err}")
             return
         self.request()
@@ -286,23 +378,29 @@ class IBLView(View):
         parts = [f"{count} / {s['ibl_samples']} samples per pixel"]
         if len(self.runs) > 1:
             parts[0] += " each (equal samples)"
-        parts += [t for t in texts if t] + ([self.note] if self.note else [])
+        short = [f"{count}/{s['ibl_samples']} spp"] + [brief for _, brief in texts if brief]
+        parts += [t for t, _ in texts if t] + ([self.note] if self.note else [])
+        self.status.short = " · ".join(dict.fromkeys(short))
         self.status.setText(" · ".join(dict.fromkeys(parts)))
         self.status.setToolTip(self.status.text())
 
-    def gain_text(self, image: np.ndarray, env: Environment) -> str:
+    def gain_text(self, image: np.ndarray, env: Environment) -> tuple[str, str]:
         """Under the white furnace, radiance above 1 is energy the BRDF creates: say so
-        (rings of equal view angle on the sphere; on an object, its brightest 1%)."""
+        (rings of equal view angle on the sphere; on an object, its brightest 1%), in full
+        and in brief (a narrow status line)."""
         lit = image[..., 3] > 0.5
         if env.name != "furnace" or not lit.any():
-            return ""
+            return "", ""
         if self.target() is None:
             peak = ring_peak(image)
         else:
             peak = float(np.percentile(image[..., :3][lit] @ np.array(LUMA), 99))
         if peak > 1.01:
-            return f"ENERGY GAIN: reflects up to {peak:.2f}× the light it receives (> 1)"
-        return f"furnace: at most {peak:.2f} of the light is reflected (≤ 1)"
+            return (
+                f"ENERGY GAIN: reflects up to {peak:.2f}× the light it receives (> 1)",
+                f"ENERGY GAIN {peak:.2f}×",
+            )
+        return f"furnace: at most {peak:.2f} of the light is reflected (≤ 1)", f"≤ {peak:.2f}"
 
     @staticmethod
     def mark_gain(image: np.ndarray) -> np.ndarray:

@@ -19,6 +19,8 @@ class LobeCanvas(QWidget):
     """The lobe image drawn by the models' GLSL, with the marks' names; drag rotates, the
     wheel zooms."""
 
+    plot_text = True  # the marks' names in the plot font (View.apply_font)
+
     def __init__(self, view: LobeView):
         super().__init__()
         self.view = view

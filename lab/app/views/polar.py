@@ -77,6 +77,7 @@ class PolarView(View):
         )
         # The legend is a label below the plot: it wraps instead of running out of the view.
         self.legend = QLabel()
+        self.legend.plot_text = True  # in the plot font (View.apply_font)
         self.legend.setWordWrap(True)
         self.legend.setTextFormat(Qt.TextFormat.RichText)
         self.legend.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter)

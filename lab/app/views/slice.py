@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 from PyQt6.QtCore import QRect, Qt
-from PyQt6.QtGui import QColor, QFont, QFontMetrics, QImage, QPainter, QPen
+from PyQt6.QtGui import QColor, QFont, QFontInfo, QFontMetrics, QImage, QPainter, QPen
 from PyQt6.QtWidgets import QWidget
 
 from lab.app.state import ModelState
-from lab.app.views.base import BACKGROUND, View, opaque, state_key
+from lab.app.views.base import BACKGROUND, PLOT_TEXT_PX, View, opaque, state_key
 from lab.app.widgets import SettingSlider
 
 
@@ -19,6 +19,8 @@ class SliceCanvas(QWidget):
     same scale, whatever the widget's shape.
     """
 
+    plot_text = True  # in the plot font (View.apply_font)
+
     def __init__(self):
         super().__init__()
         self.images: list[tuple[QImage, str, str]] = []
@@ -26,9 +28,11 @@ class SliceCanvas(QWidget):
         opaque(self)
 
     def axis_font(self) -> QFont:
-        """Tick and axis labels a little smaller than the titles (presenter fonts too)."""
+        """Tick and axis labels a little smaller than the titles, but never below the
+        presenter's PLOT_TEXT_PX once the titles are that large."""
         font = QFont(self.font())
-        font.setPointSizeF(max(self.font().pointSizeF() * 0.85, 6.0))
+        if QFontInfo(font).pixelSize() < PLOT_TEXT_PX:
+            font.setPointSizeF(max(self.font().pointSizeF() * 0.85, 6.0))
         return font
 
     def margins(self) -> tuple[int, int, int, int]:
