@@ -292,7 +292,7 @@ def test_parameters_in_view_without_scrolling(qtbot, window):
     assert not window.params.formula.isHidden() and "f_r" in window.params.formula.text()
 
 
-def test_presenter_mode_enlarges_text_and_keeps_views(qtbot, window, output_dir):
+def test_presenter_mode_enlarges_text_and_gives_the_desk_back(qtbot, window, output_dir):
     window.lab.add(load_model("phong"))
     window.lab.add(load_model("cook_torrance"))
     settle(qtbot, window)
@@ -305,17 +305,22 @@ def test_presenter_mode_enlarges_text_and_keeps_views(qtbot, window, output_dir)
         assert window.params.title.font().pointSizeF() > 1.4 * size
         bigger = window.view("albedo").plot.getAxis("bottom").style["tickFont"]
         assert bigger is not None and (tick is None or bigger.pointSizeF() > tick.pointSizeF())
-        for view in window.views:  # shown, or a tab behind a shown view (narrow screens)
-            tabs = window.tabifiedDockWidgets(window.docks[view.name])
-            closed = bool(views.view(view.name).tab_of)  # opened from the View menu
-            assert view.is_shown() or any(t.widget().is_shown() for t in tabs) or closed, view.name
-        for _, _, rect in window.view("slice").axes():
-            assert rect.width() == rect.height() >= 40
+        # The focus layout's views, large; the others closed until the desk comes back.
+        assert window.layout_name == "sphere_polar"
+        shown = {view.name for view in window.views if view.is_shown()}
+        assert shown == {"sphere", "polar"}
         window.grab().save(str(output_dir / "app_presenter.png"))
     finally:
         window.toggle_presenter()
     qtbot.wait(100)
+    settle(qtbot, window)
     assert window.params.title.font().pointSizeF() == pytest.approx(size)
+    for view in window.views:  # the desk again: shown, or a tab behind a shown view
+        tabs = window.tabifiedDockWidgets(window.docks[view.name])
+        closed = bool(views.view(view.name).tab_of)  # opened from the View menu
+        assert view.is_shown() or any(t.widget().is_shown() for t in tabs) or closed, view.name
+    for _, _, rect in window.view("slice").axes():
+        assert rect.width() == rect.height() >= 40
 
 
 def test_tonemap_matches_the_formula():

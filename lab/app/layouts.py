@@ -28,6 +28,7 @@ DOCK_AREAS = {
 }
 PRESENTER_SCALE = 1.6  # widget text when presenting, against the desktop's
 CONTROLS_MIN = 300  # the controls' narrowest: a colour field, its swatch and reset button
+NARROW = 1200  # a screen narrower than this fits two views in a row beside the controls
 
 
 def screen_room(win: QWidget) -> QRect:
@@ -97,6 +98,12 @@ def place_desk(win: MainWindow) -> None:
     for owner, dock in tabs:
         win.tabifyDockWidget(win.docks[owner], dock)
         win.docks[owner].raise_()
+    if screen_room(win).width() < NARROW:  # a 1024-pixel screen: the third view is a tab
+        for row in rows.values():
+            for extra in row[2:]:
+                win.tabifyDockWidget(row[1], extra)
+            if len(row) > 2:
+                row[1].raise_()
 
 
 def place_focus(win: MainWindow, name: str) -> None:
@@ -118,6 +125,7 @@ def fit_docks(win: MainWindow) -> None:
     """Dock sizes for the window's size: the controls' width (controls_width), the rest
     to the views, shared by the focus layout's shares or the views' specs' `size` (each
     row's height, each view's width in its row)."""
+    keep_on_screen(win)  # a preset's views may need less room than the last ones
     width, height = max(win.width(), 800), max(win.height(), 600)
     left = controls_width(win)
     pin_width(win, win.controls_dock, left)

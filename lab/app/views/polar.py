@@ -212,6 +212,7 @@ class PolarView(View):
         light's grows to the right and the mirror's to the left while the lines are steep,
         inward once they are flat (past 50 degrees), so all stay inside the view."""
         normal, incident, mirror = (text for _, text in self.marks)
+        normal.setVisible(True)
         merged = theta_i < 8
         for text in (incident, mirror):
             text.setVisible(not merged)
@@ -229,6 +230,8 @@ class PolarView(View):
             boxes = [glyph_box(t) for t in shown]
             if not any(a.intersects(b) for i, a in enumerate(boxes) for b in boxes[i + 1 :]):
                 break
+        else:  # letters collide too (a small plot, projector text): the normal's goes
+            normal.setVisible(theta_i == 0)
         self.short_marks = words[0] == "N"
 
     def anchor_inside(self, text: pg.TextItem, preferred: float) -> None:
