@@ -8,8 +8,9 @@ from PyQt6.QtGui import QColor, QFont, QFontInfo, QFontMetrics, QImage, QPainter
 from PyQt6.QtWidgets import QWidget
 
 from lab.app.state import ModelState
-from lab.app.views.base import BACKGROUND, PLOT_TEXT_PX, View, opaque, state_key
-from lab.app.widgets import SettingSlider
+from lab.app.views.base import BACKGROUND, PLOT_TEXT_PX, View, opaque, state_key, tonemap
+from lab.app.widgets import LiveText, SettingCombo, SettingSlider
+from lab.views import slice as scale
 
 
 class SliceCanvas(QWidget):
@@ -24,6 +25,7 @@ class SliceCanvas(QWidget):
     def __init__(self):
         super().__init__()
         self.images: list[tuple[QImage, str, str]] = []
+        self.bar: tuple[float, float, bool] | None = None  # the colour scale (low, high, log)
         self.setMinimumSize(160, 120)
         opaque(self)
 
@@ -42,21 +44,28 @@ class SliceCanvas(QWidget):
         title = QFontMetrics(self.font()).height()
         return (fm.horizontalAdvance("90°") + line + 10, title + 4, 12, 2 * line + 6)
 
+    def bar_width(self) -> int:
+        """Room on the right for the colour bar and its numbers (0 without one)."""
+        if self.bar is None:
+            return 0
+        return 18 + QFontMetrics(self.axis_font()).horizontalAdvance("8.8·10⁻⁸ ") + 8
+
     def plot_rects(self, count: int | None = None) -> list[QRect]:
         """Where each image goes: squares of one size in the grid (columns x rows) that
         makes them largest, centred."""
         n = max(count if count is not None else len(self.images), 1)
         left, top, right, bottom = self.margins()
+        width = self.width() - self.bar_width()
         best = (0, 1, 1)
         for cols in range(1, n + 1):
             rows = -(-n // cols)
-            side = min(self.width() // cols - left - right, self.height() // rows - top - bottom)
+            side = min(width // cols - left - right, self.height() // rows - top - bottom)
             if side > best[0]:
                 best = (side, cols, rows)
         side, cols, rows = best
         side = max(side, 16)
         cell_w, cell_h = left + side + right, top + side + bottom
-        x0 = (self.width() - cols * cell_w) // 2
+        x0 = (width - cols * cell_w) // 2
         y0 = (self.height() - rows * cell_h) // 2
         return [
             QRect(x0 + (i % cols) * cell_w + left, y0 + (i // cols) * cell_h + top, side, side)
@@ -141,7 +150,34 @@ class SliceCanvas(QWidget):
                 "θd",
             )
             painter.restore()
+        if self.bar is not None and self.images:
+            self.paint_bar(painter, self.plot_rects()[0], font)
         painter.end()
+
+    def paint_bar(self, painter: QPainter, rect: QRect, font: QFont) -> None:
+        """The colour scale beside the images: the ramp, its ends' values (and the middle
+        of a log scale) in sr^-1."""
+        low, high, log = self.bar
+        x = self.width() - self.bar_width() + 4
+        steps = np.linspace(1.0, 0.0, max(rect.height(), 2))
+        colours = (scale.ramp(steps) * 255 + 0.5).astype(np.uint8)
+        for row, (r, g, b) in enumerate(colours):
+            painter.setPen(QColor(int(r), int(g), int(b)))
+            painter.drawLine(x, rect.top() + row, x + 12, rect.top() + row)
+        painter.setPen(QColor(170, 170, 170))
+        painter.setFont(font)
+        line = QFontMetrics(font).height()
+        marks = [(0.0, high), (1.0, low)]
+        if log:
+            marks.append((0.5, float(np.sqrt(low * high))))
+        for where, value in marks:
+            y = rect.top() + round(where * (rect.height() - 1))
+            painter.drawLine(x + 12, y, x + 15, y)
+            painter.drawText(
+                QRect(x + 17, y - line // 2, self.width() - x - 17, line),
+                Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter,
+                scale.tick_label(value),
+            )
 
 
 class SliceView(View):
@@ -159,6 +195,14 @@ class SliceView(View):
             "the slice's difference azimuth; the images use the spheres' exposure and gamma"
         )
         self.tools.addWidget(phi_d, 1)
+        colours = SettingCombo(s, "slice_scale", scale.SCALES)
+        colours.setToolTip(
+            "colours: log or linear scale to the 99th percentile (a grazing divergence "
+            "would take a scale to the maximum), or the spheres' exposure and gamma"
+        )
+        self.tools.addWidget(colours)
+        self.note = LiveText(optional=True)  # which scale, where there is room
+        self.layout_.addWidget(self.note)
         self.canvas = SliceCanvas()
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, np.ndarray]] = []
@@ -174,7 +218,7 @@ class SliceView(View):
         rects = self.canvas.plot_rects(len(self.lab.visible_models()))
         return min(max(rects[0].width(), 32), 256)
 
-    settings_used = ("phi_d", "exposure", "gamma")
+    settings_used = ("phi_d", "exposure", "gamma", "slice_scale")
 
     def own_inputs(self) -> tuple:
         return (self.side(),)
@@ -201,7 +245,23 @@ class SliceView(View):
             if image is None:
                 continue
             self.data.append((state, image))
-            images.append((self.toned_image(state, image, tone), state.label, state.color))
+        mapped = scale.SCALES[s["slice_scale"]] != "exposure"
+        if mapped and self.data:  # one scale for every model: their colours compare
+            log = scale.SCALES[s["slice_scale"]] == "log"
+            low, high = scale.colour_range([im for _, im in self.data], log)
+            self.canvas.bar = (low, high, log)
+            for state, image in self.data:
+                shown = tonemap(scale.coloured(image, low, high, log), 0.0, 1.0)
+                images.append((shown, state.label, state.color))
+            self.note.short = f"{'log' if log else 'linear'} scale, top: 99th percentile"
+            self.note.setText(scale.scale_note(log))
+        else:
+            self.canvas.bar = None
+            for state, image in self.data:
+                images.append((self.toned_image(state, image, tone), state.label, state.color))
+            self.note.short = "exposure"
+            self.note.setText("f_r with the spheres' exposure and gamma" if self.data else "")
+        self.note.setToolTip(self.note.text())
         self.canvas.images = images
         self.canvas.update()
         return coarse
