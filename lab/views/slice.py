@@ -15,7 +15,7 @@ from lab.plotscale import SUPERSCRIPT, UNIT
 from lab.views import PlotJob, Setting, ViewSpec
 
 SCALES = ("log", "linear", "exposure")  # the app's menu; the first two map colours
-TOP_PERCENTILE = 99.0  # the scale's top: what a grazing divergence cannot move
+TOP_PERCENTILE = 95.0  # the top: a grazing divergence (a few % of the pixels) cannot move it
 DECADES = 4.0  # the log scale's range below its top
 # A dark-to-light ramp (black, violet, red, orange, pale yellow): brightness rises
 # monotonically, so it reads in grey too; anchors at 0, 1/4, 1/2, 3/4, 1.

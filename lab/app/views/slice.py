@@ -197,7 +197,7 @@ class SliceView(View):
         self.tools.addWidget(phi_d, 1)
         colours = SettingCombo(s, "slice_scale", scale.SCALES)
         colours.setToolTip(
-            "colours: log or linear scale to the 99th percentile (a grazing divergence "
+            "colours: log or linear scale to the 95th percentile (a grazing divergence "
             "would take a scale to the maximum), or the spheres' exposure and gamma"
         )
         self.tools.addWidget(colours)
@@ -253,7 +253,8 @@ class SliceView(View):
             for state, image in self.data:
                 shown = tonemap(scale.coloured(image, low, high, log), 0.0, 1.0)
                 images.append((shown, state.label, state.color))
-            self.note.short = f"{'log' if log else 'linear'} scale, top: 99th percentile"
+            top = f"top: {scale.TOP_PERCENTILE:g}th percentile"
+            self.note.short = f"{'log' if log else 'linear'} scale, {top}"
             self.note.setText(scale.scale_note(log))
         else:
             self.canvas.bar = None
