@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -15,15 +16,66 @@ import numpy as np
 
 from lab import plots, reference
 
-FONT = 13
+# The slides show a figure at its own size (one PNG pixel = one CSS pixel of the 1280x800
+# deck), which a 1280x720 screen draws at 0.874: text of 21 pt at 100 dpi (29 px) is 25 px
+# there, readable from the back row (tests/test_slides.py measures it).
+DPI = 100
+FONT = 21
 
 
-def _save(fig, out: Path) -> Path:
-    fig.savefig(out, dpi=110, bbox_inches="tight", facecolor="white")
+def text_sizes(fig, dpi: float = DPI) -> list[tuple[str, float]]:
+    """Every text the figure draws, with its font size in the PNG's pixels."""
+    import matplotlib.text
+
+    hidden = set()  # tick labels of axes drawn without their axis ("off")
+    for ax in fig.axes:
+        if not ax.axison:
+            for axis in (ax.xaxis, ax.yaxis):
+                hidden.update(map(id, axis.get_ticklabels(which="both")))
+    return [
+        (t.get_text(), round(t.get_fontsize() * dpi / 72.0, 2))
+        for t in fig.findobj(matplotlib.text.Text)
+        if t.get_visible() and t.get_text().strip() and id(t) not in hidden
+    ]
+
+
+def record_text(out: Path, texts: list[tuple[str, float]]) -> None:
+    """Write what a figure says and how large beside it (NAME.text.json): the deck's test
+    reads it to measure the text on the slide; [] for a picture without text."""
+    data = [{"text": text, "px": px} for text, px in texts]
+    out.with_suffix(".text.json").write_text(json.dumps(data, ensure_ascii=False, indent=0))
+
+
+def save(fig, out: Path, dpi: float = DPI) -> Path:
+    """Save a slide figure (and its text sizes) and free it."""
     import matplotlib.pyplot as plt
 
+    fig.savefig(out, dpi=dpi, bbox_inches="tight", facecolor="white")
+    record_text(out, text_sizes(fig, dpi))
     plt.close(fig)
+    trim(out)
     return out
+
+
+def trim(path: Path, margin: int = 8) -> None:
+    """Cut the white border off a PNG (a polar half disc leaves its empty half), keeping
+    `margin` pixels: the slide shows the drawing, not the paper. Text sizes do not change."""
+    from PIL import Image
+
+    with Image.open(path) as image:
+        rgb = np.asarray(image.convert("RGB"))
+    ink = np.argwhere((rgb < 245).any(axis=2))
+    if ink.size == 0:
+        return
+    (top, left), (bottom, right) = ink.min(axis=0), ink.max(axis=0)
+    height, width = rgb.shape[:2]
+    box = (
+        max(int(left) - margin, 0),
+        max(int(top) - margin, 0),
+        min(int(right) + margin + 1, width),
+        min(int(bottom) + margin + 1, height),
+    )
+    Image.fromarray(rgb[box[1] : box[3], box[0] : box[2]]).save(path)
 
 
 def gonioreflectometer(renderer, out: str | Path, theta_i: float = 45.0) -> Path:
@@ -34,7 +86,7 @@ def gonioreflectometer(renderer, out: str | Path, theta_i: float = 45.0) -> Path
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    fig, ax = plt.subplots(figsize=(11.0, 5.6))
     ax.set_aspect("equal")
     ax.axis("off")
     ax.add_patch(plt.Rectangle((-0.55, -0.08), 1.1, 0.08, color="0.55"))
@@ -68,16 +120,16 @@ def gonioreflectometer(renderer, out: str | Path, theta_i: float = 45.0) -> Path
     ax.text(dx - 0.12, dy + 0.02, "detector\nat θo, φo", ha="right", fontsize=FONT)
     ax.text(
         0.0,
-        -0.32,
-        "each reading: reflected radiance / incident irradiance = fᵣ (sr⁻¹);\n"
-        "blue: the readings every 10° (Cook-Torrance, m = 0.3, from its GLSL)",
+        -0.3,
+        "reading = reflected radiance / irradiance = fᵣ (sr⁻¹)\n"
+        "blue: every 10°, Cook-Torrance (m = 0.3) from its GLSL",
         ha="center",
         va="top",
-        fontsize=FONT - 2,
+        fontsize=FONT,
     )
-    ax.set_xlim(-1.75, 1.75)
-    ax.set_ylim(-0.6, 1.5)
-    return _save(fig, Path(out))
+    ax.set_xlim(-2.1, 2.1)
+    ax.set_ylim(-0.75, 1.5)
+    return save(fig, Path(out))
 
 
 def _groove(ax, slope_deg: float, x0: float, lit: float, color: str, side: int) -> None:
@@ -112,7 +164,7 @@ def vgroove(out: str | Path, slope_deg: float = 30.0, grazing_deg: float = 80.0)
     near = 2.0 * h - far  # the mirror partner of `far` about the facet normal (negative: left)
     cos = [np.array([math.cos(x)]) for x in (h, far, abs(near), far - h)]
     g = float(reference.g_vgroove(*cos)[0])  # symmetric in L and V: one value for both panels
-    fig, axes = plt.subplots(2, 1, figsize=(7.5, 5.4))
+    fig, axes = plt.subplots(1, 2, figsize=(12.0, 3.6))
     for ax, what in zip(axes, ("shadowing", "masking"), strict=True):
         ax.set_aspect("equal")
         ax.axis("off")
@@ -128,13 +180,21 @@ def vgroove(out: str | Path, slope_deg: float = 30.0, grazing_deg: float = 80.0)
             style = {"arrowstyle": "->", "color": "orange" if what == "shadowing" else "0.3"}
             ax.annotate("", end, start, arrowprops=style)
         who, other = ("light", "eye") if what == "shadowing" else ("eye", "light")
-        hidden = "in shadow" if what == "shadowing" else "hidden from the eye"
+        hidden = "in shadow" if what == "shadowing" else "hidden"
         ax.set_title(
-            f"{what}: {who} at {grazing_deg:g}° (right), {other} at {abs(math.degrees(near)):g}°"
-            f" (left)\nG = {g:.2f}: the dark {1 - g:.0%} of each facet is {hidden}",
+            f"{what}: {who} at {grazing_deg:g}°,\n{other} at {abs(math.degrees(near)):g}°;"
+            f" dark: {hidden}",
             fontsize=FONT,
         )
         ax.set_xlim(-3.3, 3.3)
-        ax.set_ylim(-math.tan(h) - 0.2, 1.0)
+        ax.set_ylim(-math.tan(h) - 0.1, 0.3)
+    fig.text(
+        0.5,
+        0.14,
+        f"G = {g:.2f}: the lit and seen share of each facet ({1 - g:.0%} dark)",
+        ha="center",
+        va="top",
+        fontsize=FONT,
+    )
     fig.tight_layout()
-    return _save(fig, Path(out))
+    return save(fig, Path(out))

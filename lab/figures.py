@@ -19,6 +19,7 @@ def _sphere(
     exposure: float = 0.0,
 ) -> Path:
     plots.save_image(renderer.sphere(model, values, light, size=384), out, exposure)
+    diagrams.record_text(out, [])  # a picture: no text to read
     return out
 
 
@@ -49,7 +50,10 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
             )
         )
     # Off-specular peak: at grazing incidence Cook-Torrance peaks beyond the mirror angle.
+    # Sized for a slide of its own: a wide half disc, the legend beside it, no title (the
+    # caption says what is plotted), every text at the slides' size.
     fig, ax = plots.figure(polar=True)
+    fig.set_size_inches(13.0, 7.0)
     theta_i = 75.0
     lobes = [
         (renderer.polar(name, values, theta_i, cos_weighted=True), name, color)
@@ -62,11 +66,12 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     flat = {"kd": (0.0,) * 3, "m": 0.35, "fresnel": "none"}
     flat_lobe = renderer.polar("cook_torrance", flat, theta_i, cos_weighted=True)
     lobes.append((flat_lobe, "cook_torrance, F = 1", "tab:grey"))
-    plots.draw_polar(ax, lobes, theta_i, "f_r cos θo (each scaled to its peak)", normalize=True)
-    path = outdir / "off_specular_peak.png"
+    plots.draw_polar(ax, lobes, theta_i, "f_r cos θo", normalize=True, fontsize=diagrams.FONT / 0.9)
+    ax.set_title("")
+    ax.set_yticks([0.5, 1.0], ["", ""])  # rings at half and full peak; the caption says so
+    ax.legend(loc="center left", bbox_to_anchor=(0.98, 0.62), fontsize=diagrams.FONT, frameon=False)
     fig.tight_layout()
-    fig.savefig(path, bbox_inches="tight")
-    paths.append(path)
+    paths.append(diagrams.save(fig, outdir / "off_specular_peak.png"))
     # Measuring, and the microfacets' shadowing and masking.
     paths.append(diagrams.gonioreflectometer(renderer, outdir / "gonioreflectometer.png"))
     paths.append(diagrams.vgroove(outdir / "vgroove.png"))
@@ -77,8 +82,10 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     # The reflection equation by Monte Carlo (lab.ibl): equal samples, and the furnace.
     from lab.ibl.figures import ibl_figures
 
-    paths += ibl_figures(outdir, renderer.ctx)
-    return paths
+    pictures = ibl_figures(outdir, renderer.ctx)
+    for path in pictures:  # rendered spheres: no text to read
+        diagrams.record_text(path, [])
+    return paths + pictures
 
 
 def gallery(outdir: str | Path, renderer: Renderer | None = None) -> Path:

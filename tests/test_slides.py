@@ -312,6 +312,62 @@ def test_off_specular_demo_shows_the_peak(deck, deck_720, renderer):
         assert above * width / (hi - lo) * scale >= 40
 
 
+# On the present slide: each figure's image (its scale on screen against its PNG's pixels)
+# and caption, and the small print, with font sizes in screen px.
+FIGURES = """() => {
+  const deck = Reveal.getScale();
+  const px = (e) => parseFloat(getComputedStyle(e).fontSize) * deck;
+  const figures = [...document.querySelectorAll('section.present .figures figure')].map((f) => {
+    const img = f.querySelector('img'), cap = f.querySelector('figcaption');
+    return { src: img.getAttribute('src'), ready: img.complete && img.naturalWidth > 0,
+             scale: img.getBoundingClientRect().width / img.naturalWidth,
+             caption: cap && cap.textContent.trim() ? px(cap) : null };
+  });
+  const small = [...document.querySelectorAll('section.present small, section.present .source')]
+    .filter((e) => e.textContent.trim()).map((e) => ({ text: e.textContent.trim().slice(0, 40),
+                                                       px: px(e) }));
+  return { figures, small };
+}"""
+
+
+def test_figure_text_readable_at_720p(deck, deck_720, output_dir):
+    """Every text inside every figure (its font size in the PNG, which lab.figures records
+    beside it, times the image's scale on screen), every caption and the small print is at
+    least 24 px on a 1280x720 screen."""
+    import json
+
+    from lab.web.slides import deck_info
+
+    small, seen = [], set()
+    for index in range(deck_info(deck)["count"]):
+        deck_720.evaluate(f"Reveal.slide({index})")
+        deck_720.wait_for_function(
+            "[...document.querySelectorAll('section.present .figures img')]"
+            ".every((i) => i.complete && i.naturalWidth > 0)"
+        )
+        shown = deck_720.evaluate(FIGURES)
+        for figure in shown["figures"]:
+            name = figure["src"].removeprefix("figures/")
+            seen.add(name)
+            sidecar = deck / "figures" / name.replace(".png", ".text.json")
+            assert sidecar.is_file(), f"{name}: no record of its text ({sidecar.name})"
+            for text in json.loads(sidecar.read_text(encoding="utf-8")):
+                if text["px"] * figure["scale"] < MIN_TEXT_PX - 0.05:
+                    size = text["px"] * figure["scale"]
+                    small.append(f"slide {index}: {name} {text['text']!r} {size:.1f} px")
+            if figure["caption"] is not None and figure["caption"] < MIN_TEXT_PX - 0.05:
+                small.append(f"slide {index}: caption of {name} {figure['caption']:.1f} px")
+        for text in shown["small"]:
+            if text["px"] < MIN_TEXT_PX - 0.05:
+                small.append(f"slide {index}: {text['text']!r} {text['px']:.1f} px")
+        if any(
+            f["src"].endswith(("off_specular_peak.png", "vgroove.png")) for f in shown["figures"]
+        ):
+            deck_720.screenshot(path=output_dir / f"slide_{index:02d}_figure_720p.png")
+    assert seen == set(deck_info(deck)["figures"])  # every figure was looked at
+    assert not small, "text under 24 px at 720p:\n" + "\n".join(small)
+
+
 # How far (screen px) the present slide's content reaches past the slide's box; KaTeX's
 # own stretchy SVG paths are left out (they are clipped by design).
 OVERFLOW = """() => { const box = document.querySelector('.reveal .slides').getBoundingClientRect();
