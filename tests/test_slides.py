@@ -175,6 +175,38 @@ def test_pdf(deck, deck_page, tmp_path):
     assert pages == deck_info(deck)["count"]
 
 
+def test_pdf_waits_for_the_monte_carlo_demo_or_says_snapshot(deck, deck_page):
+    """The handout shows the Monte Carlo demo at its sample target; where printing cannot
+    wait that long, a note beneath the demo says the page is a snapshot, with its count."""
+    from lab.web.site import serving
+    from lab.web.slides import IBL_PROGRESS, _wait_for_convergence
+
+    with serving(deck) as url:
+        page = deck_page.lab_browser.new_page(viewport={"width": 1280, "height": 800})
+        page.goto(f"{url}index.html?print-pdf")
+        page.wait_for_function("window.Reveal && Reveal.isReady()")
+        page.evaluate(
+            "document.querySelectorAll('iframe.ibl-demo').forEach(f => f.src = f.dataset.src)"
+        )
+        page.wait_for_function(
+            "[...document.querySelectorAll('iframe.ibl-demo')].every(f => f.contentWindow"
+            " && f.contentWindow.iblDemo && f.contentWindow.iblDemo.panels.length)"
+        )
+        _wait_for_convergence(page, 0.2)  # far too short for 2048 samples
+        (samples, target), *_ = page.evaluate(IBL_PROGRESS)
+        notes = page.eval_on_selector_all("p.snapshot", "ps => ps.map(p => p.textContent)")
+        assert samples < target and len(notes) == 1
+        assert f"of {target} samples per pixel" in notes[0]
+        # A target it can reach: printing waits for it, and says nothing more.
+        page.evaluate("document.querySelectorAll('p.snapshot').forEach(p => p.remove())")
+        frame = page.query_selector("iframe.ibl-demo").content_frame()
+        frame.evaluate("iblDemo.state.target = Math.max(24, ...iblDemo.panels.map(p => p.samples))")
+        _wait_for_convergence(page, 120)
+        (samples, target), *_ = page.evaluate(IBL_PROGRESS)
+        assert samples >= target and page.query_selector("p.snapshot") is None
+        page.close()
+
+
 def test_slide_keys_work_after_using_a_demo(deck, deck_page):
     """A click on a demo's slider gives the frame the focus; a clicker's PageDown and PageUp
     still move between slides (the frame passes them to the deck)."""

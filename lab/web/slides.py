@@ -11,6 +11,7 @@ import contextlib
 import json
 import shutil
 import subprocess
+import time
 from pathlib import Path
 
 from lab.resources import data_dir
@@ -93,10 +94,11 @@ def deck_info(deck: Path) -> dict:
     return json.loads((deck / "deck.json").read_text(encoding="utf-8"))
 
 
-def pdf(deck: Path, output: Path, browser=None) -> Path:
+def pdf(deck: Path, output: Path, browser=None, converge_s: float = 60.0) -> Path:
     """Print the built deck to a PDF (reveal.js print layout, one slide per page).
 
-    `browser`: an already launched Playwright browser to use (one per thread at a time).
+    `browser`: an already launched Playwright browser to use (one per thread at a time);
+    `converge_s`: how long the Monte Carlo demos may run toward their sample targets.
     """
     if not (deck / "index.html").is_file():
         raise SlidesError(f"{deck} holds no deck: run 'brdf-lab slides build {deck}' first")
@@ -129,9 +131,44 @@ def pdf(deck: Path, output: Path, browser=None) -> Path:
             "f.contentWindow.iblDemo.state.error))",
             timeout=60_000,
         )
+        _wait_for_convergence(page, converge_s)
         page.pdf(path=str(output), width="1280px", height="800px", print_background=True)
         page.close()
     return output
+
+
+# Each Monte Carlo demo's samples per pixel (the fewest of its panels) and its target.
+IBL_PROGRESS = """() => [...document.querySelectorAll('iframe.ibl-demo')].map((f) => {
+  const d = f.contentWindow && f.contentWindow.iblDemo;
+  if (!d || d.state.error) return null;
+  return [Math.min(...d.panels.map((p) => p.samples)), d.state.target];
+})"""
+
+# Beneath a demo printed before it converged: what the handout shows is a snapshot.
+SNAPSHOT_NOTE = """([index, samples, target]) => {
+  const frame = document.querySelectorAll('iframe.ibl-demo')[index];
+  const note = document.createElement('p');
+  note.className = 'snapshot';
+  note.textContent = `Snapshot at ${samples} of ${target} samples per pixel: ` +
+    'the live demo converges further.';
+  note.style.cssText = 'font-size: 0.92em; color: #555; margin: 0.2em 0;';
+  frame.after(note);
+}"""
+
+
+def _wait_for_convergence(page, seconds: float) -> None:
+    """Let every Monte Carlo demo reach its sample target (the handout should show MIS
+    beating uniform sampling, not 8 samples of noise); one that has not by then is printed
+    with a note saying it is a snapshot."""
+    deadline = time.monotonic() + seconds
+    while True:
+        progress = page.evaluate(IBL_PROGRESS)
+        pending = [(i, p) for i, p in enumerate(progress) if p is not None and p[0] < p[1]]
+        if not pending or time.monotonic() > deadline:
+            break
+        page.wait_for_timeout(250)
+    for index, (samples, target) in pending:
+        page.evaluate(SNAPSHOT_NOTE, [index, samples, target])
 
 
 @contextlib.contextmanager
