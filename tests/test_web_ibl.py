@@ -73,13 +73,23 @@ def test_furnace_render_equals_the_albedo(page, ibl, name, values):
     assert page.errors == []
 
 
-def test_unnormalised_phong_gains_energy_in_the_furnace(page):
+def test_unnormalised_phong_gains_energy_in_the_furnace(page, output_dir):
     """Plain Phong with ks = 1, ke = 1 reflects more than arrives: the view says so."""
     values = {"kd": [0.5] * 3, "ks": [1.0] * 3, "ke": 1.0}
     image = web_ibl(page, "phong", values, "furnace", "brdf", 128)
     status = page.evaluate("brdfLab.panel(0).extra.ibl.status.textContent")
-    assert "energy gain" in status, status
+    assert "ENERGY GAIN (red)" in status, status
     assert image[..., :3].max() > 1.0
+    # Marked in colour too, as on the desktop: the gaining rings are red on the canvas (the
+    # white furnace would otherwise hide a white sphere in a white background).
+    red = page.evaluate(
+        """() => { const c = brdfLab.panel(0).extra.ibl.canvas;
+          const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; let n = 0;
+          for (let k = 0; k < d.length; k += 4) if (d[k] > 240 && d[k + 1] < 170) n++;
+          return n / (c.width * c.height); }"""
+    )
+    assert red > 0.1, red
+    page.locator("#panels > .panel").first.screenshot(path=output_dir / "web_ibl_furnace_gain.png")
 
 
 @pytest.mark.parametrize("strategy", ["cosine", "environment", "brdf", "mis_power"])

@@ -53,8 +53,15 @@ export function fallback(model, strategy, files) {
 /** The largest mean luminance over rings of equal view angle of a mean image (RGBA, any
  * row order): in the white furnace, the most a ring reflects (integrator.ring_peak). */
 export function ringPeak(data, size, luma) {
+  return Math.max(0, ...ringMeans(data, size, luma).means.filter((m) => m !== null));
+}
+
+/** Each pixel's ring of equal view angle (-1 off the sphere) and each ring's mean luminance
+ * (null for a ring without pixels). */
+function ringMeans(data, size, luma) {
   const sum = new Float64Array(RINGS);
   const count = new Float64Array(RINGS);
+  const rings = new Int8Array(size * size).fill(-1);
   for (let y = 0; y < size; y++) {
     for (let x = 0; x < size; x++) {
       const px = ((x + 0.5) / size) * 2 - 1;
@@ -64,13 +71,26 @@ export function ringPeak(data, size, luma) {
       const theta = (Math.acos(Math.sqrt(1 - r2)) * 180) / Math.PI;
       const ring = Math.min(Math.floor((theta / 90) * RINGS), RINGS - 1);
       const i = 4 * (y * size + x);
+      rings[y * size + x] = ring;
       sum[ring] += luma[0] * data[i] + luma[1] * data[i + 1] + luma[2] * data[i + 2];
       count[ring]++;
     }
   }
-  let peak = 0;
-  for (let r = 0; r < RINGS; r++) if (count[r]) peak = Math.max(peak, sum[r] / count[r]);
-  return peak;
+  const means = Array.from(sum, (s, r) => (count[r] ? s / count[r] : null));
+  return { rings, means };
+}
+
+/** Tint red (in place) the rings reflecting more than the light they receive: in the white
+ * furnace they would vanish into the white background (the desktop's IBLView.mark_gain). */
+export function markGain(data, size, luma) {
+  const { rings, means } = ringMeans(data, size, luma);
+  for (let p = 0; p < rings.length; p++) {
+    if (rings[p] < 0 || !(means[rings[p]] > 1.01)) continue;
+    const i = 4 * p;
+    data[i] = Math.min(data[i], 1) * 0.3 + 0.7;
+    data[i + 1] = Math.min(data[i + 1], 1) * 0.3;
+    data[i + 2] = Math.min(data[i + 2], 1) * 0.3;
+  }
 }
 
 /** The IBL view of one panel. */
@@ -274,6 +294,7 @@ export class IblView {
     // The furnace test: under radiance 1 no ring may reflect more than 1 (beyond the noise).
     const furnace = IBL.environment === "furnace" && this.samples >= GAIN_SAMPLES;
     this.peak = furnace ? ringPeak(data, this.size, this.env.C.LUMA) : null;
+    if (this.peak > 1.01) markGain(data, this.size, this.env.C.LUMA); // colour and text
     this.showStatus();
     this.canvas.getContext("2d").putImageData(toImage(data, this.size, this.size, lab.exposure), 0, 0);
   }
@@ -282,7 +303,7 @@ export class IblView {
     const model = this.panel.model;
     const note = model ? fallback(model, IBL.strategy, this.env.lab.files) : null;
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
-    const gain = this.peak > 1.01 ? ` · energy gain: a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
+    const gain = this.peak > 1.01 ? ` · ENERGY GAIN (red): a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
     const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}` +
       (note ? ` · ${note}` : "") + gain;
     this.status.textContent = text;
