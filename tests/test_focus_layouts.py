@@ -84,6 +84,12 @@ def test_layouts_fit_this_screen(qtbot, window, output_dir):
         widths[preset.stem] = window.controls_dock.width()
     assert len(set(widths.values())) == 1, f"the controls change width: {widths}"
     assert widths[preset.stem] <= 0.34 * window.width()
+    for name in ("ibl", "terms", "object"):  # views opened and closed from the View menu
+        window.docks[name].toggleViewAction().trigger()
+        qtbot.wait(80)
+        assert off_screen(window) == "", f"{name} opened on the desk"
+        window.docks[name].toggleViewAction().trigger()
+        qtbot.wait(30)
     window.toggle_presenter()
     failures = {}
     try:
@@ -91,6 +97,9 @@ def test_layouts_fit_this_screen(qtbot, window, output_dir):
             if isinstance(case, Path):
                 window.load_preset(case)
             if case == "ibl":  # opened from the View menu while presenting
+                window.docks["lobe3d"].toggleViewAction().trigger()  # a tab: fits too
+                qtbot.wait(80)
+                assert off_screen(window) == "" and window.layout_name == "sphere_object"
                 window.docks["ibl"].toggleViewAction().trigger()
             qtbot.wait(150)
             settle(qtbot, window)
@@ -142,3 +151,13 @@ def test_projector_screen(size):
         command, cwd=root, env=env, capture_output=True, text=True, timeout=900, check=False
     )
     assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
+
+
+def test_a_preset_names_a_known_layout(tmp_path):
+    from lab.models import ModelError
+
+    path = tmp_path / "bad.toml"
+    path.write_text('layout = "sideways"\n[[model]]\nmodel = "phong"\n', encoding="utf-8")
+    with pytest.raises(ModelError, match="unknown layout 'sideways'; write one of 'desk'"):
+        read_preset(path)
+    assert all(read_preset(p).get("layout") in LAYOUTS for p in shipped_presets())
