@@ -4,22 +4,19 @@ layouts for a projector, the room each dock gets and a window that stays on its 
 A focus layout shows one or two views large beside compact controls, at presenter fonts:
 widgets 1.6 times the desktop's, text inside the plots at least PLOT_TEXT_PX. It is made
 for 1024x768, 1280x720 and 1280x800 screens (tests/test_focus_layouts.py measures them).
+`win` is always the lab's MainWindow (lab.app.window, which imports this module: typed
+here as the QMainWindow it is, so that the two do not import each other).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from PyQt6.QtCore import QRect, Qt, QTimer
 from PyQt6.QtGui import QFont
-from PyQt6.QtWidgets import QApplication, QDockWidget, QWidget
+from PyQt6.QtWidgets import QApplication, QDockWidget, QMainWindow, QWidget
 
 from lab import views
 from lab.app.views.base import PLOT_TEXT_PX
 from lab.presets import DEFAULT_FOCUS, LAYOUTS
-
-if TYPE_CHECKING:
-    from lab.app.window import MainWindow
 
 QWIDGETSIZE_MAX = 16777215  # Qt's "no maximum" for a widget's size
 DOCK_AREAS = {
@@ -53,7 +50,7 @@ def keep_on_screen(win: QWidget) -> None:
         win.move(x, y)
 
 
-def controls_width(win: MainWindow) -> int:
+def controls_width(win: QMainWindow) -> int:
     """The controls' width: 27 % of the desk, a compact column in a focus layout. It
     depends on the window's width only, so a preset never changes it."""
     width = max(win.width(), 800)
@@ -62,7 +59,7 @@ def controls_width(win: MainWindow) -> int:
     return max(CONTROLS_MIN, int(0.27 * width))
 
 
-def pin_width(win: MainWindow, dock: QDockWidget, width: int) -> None:
+def pin_width(win: QMainWindow, dock: QDockWidget, width: int) -> None:
     """Give `dock` exactly `width` now, then let the user drag it again. (Qt's resizeDocks
     does not move the separator between the left and right areas once a preset has hidden
     the bottom row: the two areas then share the width half and half.)"""
@@ -75,7 +72,7 @@ def pin_width(win: MainWindow, dock: QDockWidget, width: int) -> None:
     QTimer.singleShot(0, release)
 
 
-def place_desk(win: MainWindow) -> None:
+def place_desk(win: QMainWindow) -> None:
     """Every view's dock where its spec puts it: rows in its area stack (the spheres on
     top), the views of a row sit side by side, a heavy view is a tab behind its owner."""
     rows: dict[tuple[str, int], list[QDockWidget]] = {}
@@ -106,7 +103,7 @@ def place_desk(win: MainWindow) -> None:
                 row[1].raise_()
 
 
-def place_focus(win: MainWindow, name: str) -> None:
+def place_focus(win: QMainWindow, name: str) -> None:
     """The layout's one or two views beside the controls; every other view closed."""
     layout = LAYOUTS[name]
     shown = [win.docks[n] for n in layout.views if n in win.docks]
@@ -121,7 +118,7 @@ def place_focus(win: MainWindow, name: str) -> None:
         win.splitDockWidget(first, second, turn)
 
 
-def fit_docks(win: MainWindow) -> None:
+def fit_docks(win: QMainWindow) -> None:
     """Dock sizes for the window's size: the controls' width (controls_width), the rest
     to the views, shared by the focus layout's shares or the views' specs' `size` (each
     row's height, each view's width in its row)."""
@@ -180,7 +177,7 @@ def plot_font(font: QFont, presenting: bool, dpi: float) -> QFont:
     return small
 
 
-def apply_fonts(win: MainWindow) -> None:
+def apply_fonts(win: QMainWindow) -> None:
     """The desktop's fonts, or the presenter's: larger widgets and plot text."""
     font = QFont(win.base_font)
     font.setBold(False)  # set, not inherited: the docks' bold titles stay theirs
@@ -202,7 +199,7 @@ def apply_fonts(win: MainWindow) -> None:
     win.model_list.arrange(2 if win.presenting else 4)
 
 
-def set_layout(win: MainWindow, name: str) -> None:
+def set_layout(win: QMainWindow, name: str) -> None:
     """Switch to layout `name`: a focus layout presents (large fonts, full screen), the
     desk gives the laptop's window back with the views that were shown there."""
     layout = LAYOUTS[name]
@@ -235,12 +232,12 @@ def set_layout(win: MainWindow, name: str) -> None:
     win.request()
 
 
-def toggle_presenter(win: MainWindow) -> None:
+def toggle_presenter(win: QMainWindow) -> None:
     """F11: the preset's focus layout, or back to the desk."""
     set_layout(win, "desk" if win.presenting else win.preset_layout or DEFAULT_FOCUS)
 
 
-def view_opened(win: MainWindow, dock: QDockWidget, shown: bool) -> None:
+def view_opened(win: QMainWindow, dock: QDockWidget, shown: bool) -> None:
     """A view opened from the View menu while presenting: the focus layout that has it
     (the IBL view alone), or else it shares the room as a tab; the window stays on screen."""
     if shown and not win.presenting:
