@@ -322,6 +322,9 @@ def test_off_specular_demo_shows_the_peak(deck, deck_720, renderer):
 
     demo = next(d for d in deck_info(deck)["demos"] if "plot=theta" in d["hash"])
     frame, scale = show_demo(deck_720, demo["slide"])
+    # Both plots on one θo axis: their mirror and peak marks line up.
+    ranges = [frame.evaluate(f"brdfLab.panel({i}).polarGeometry.range") for i in (0, 1)]
+    assert ranges[0] == ranges[1], ranges
     for i, fresnel in enumerate(("schlick", "none")):
         values = {"kd": (0.0, 0.0, 0.0), "m": 0.35, "fresnel": fresnel}
         assert frame.evaluate(f"brdfLab.panel({i}).values.fresnel") == fresnel

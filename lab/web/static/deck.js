@@ -35,6 +35,29 @@ export function peakAngle(lum, grazingDeg) {
   return best - 90;
 }
 
+/** The θo range [lo, hi] where a lobe is above 5% of its peak, with the mirror direction
+ * (in the plane of incidence) or the peak in it. */
+export function lobeRange(lum, thetaI, grazingDeg, inPlane) {
+  const peak = peakAngle(lum, grazingDeg);
+  const top = Math.max(...lum.filter((_, i) => Math.abs(i - 90) <= grazingDeg), 0);
+  let lo = inPlane ? thetaI : peak;
+  let hi = lo;
+  lum.forEach((f, i) => {
+    if (top > 0 && f >= 0.05 * top) {
+      lo = Math.min(lo, i - 90);
+      hi = Math.max(hi, i - 90);
+    }
+  });
+  return [lo, hi];
+}
+
+/** One θo range for lobes plotted side by side (plot=theta): their axes match, so the
+ * mirror and peak marks of two plots line up. */
+export function sharedRange(lums, thetaI, grazingDeg, inPlane) {
+  const ranges = lums.map((lum) => lobeRange(lum, thetaI, grazingDeg, inPlane));
+  return [Math.min(...ranges.map((r) => r[0])), Math.max(...ranges.map((r) => r[1]))];
+}
+
 /** A tick step of whole degrees that gives at most `room` gaps over `span`. */
 const niceStep = (span, room) => [5, 10, 15, 30, 45, 90].find((s) => span / s <= Math.min(room, 6)) || 90;
 
@@ -44,7 +67,7 @@ const niceStep = (span, room) => [5, 10, 15, 30, 45, 90].find((s) => span / s <=
  * peak past the mirror direction shows as a gap between two lines. `lum` holds the values at
  * θo = -90..90 in 1-degree steps (positive: the mirror side); `scale` is the top of the axis.
  */
-export function drawCurve(canvas, curve, thetaI, scale, { fontPx, what, grazingDeg, inPlane }) {
+export function drawCurve(canvas, curve, thetaI, scale, { fontPx, what, grazingDeg, inPlane, range }) {
   const ctx = canvas.getContext("2d");
   const w = canvas.width;
   const h = canvas.height;
@@ -53,16 +76,9 @@ export function drawCurve(canvas, curve, thetaI, scale, { fontPx, what, grazingD
   ctx.font = `${font}px system-ui, sans-serif`;
   const { lum } = curve;
   const peak = peakAngle(lum, grazingDeg);
-  const top = Math.max(...lum.filter((_, i) => Math.abs(i - 90) <= grazingDeg), 0);
-  // The θo range: where the lobe is above 5% of its peak, and the mirror direction.
-  let lo = inPlane ? thetaI : peak;
-  let hi = lo;
-  lum.forEach((f, i) => {
-    if (top > 0 && f >= 0.05 * top) {
-      lo = Math.min(lo, i - 90);
-      hi = Math.max(hi, i - 90);
-    }
-  });
+  // The θo range: where the lobe is above 5% of its peak, and the mirror direction (or the
+  // range given, shared with the plots beside it).
+  let [lo, hi] = range || lobeRange(lum, thetaI, grazingDeg, inPlane);
   // Ticks far enough apart for their labels ("-30°" is the widest).
   const room = Math.max(1, Math.floor((w - 1.5 * font) / (ctx.measureText("-30°").width + font)));
   const step = niceStep(Math.max(hi - lo, 10), room);

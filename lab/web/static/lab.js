@@ -7,7 +7,7 @@ import { assembleFragment, finishProgram, floatTexture, startProgram, translateL
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
-import { drawCurve, pageFontPx, showOnly } from "./deck.js";
+import { drawCurve, pageFontPx, sharedRange, showOnly } from "./deck.js";
 import { openModelFile, putModel } from "./measured.js";
 import { draft, draftNames, forgetFile, keepDraft, keepFile, keptFiles, storeProblem } from "./store.js";
 import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
@@ -712,7 +712,7 @@ function drawPolars() {
     const each = lab.scaleEach ? own(curve) : scale;
     panel.polarGeometry = lab.plot === "theta"
       ? drawCurve(panel.polar, curve, theta, each, { fontPx: pageFontPx(), grazingDeg: C.GRAZING_DEG,
-        what: lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ", inPlane: lab.phiO === 0 })
+        what: lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ", inPlane: lab.phiO === 0, range: sharedRange(curves.map(([, c]) => c.lum), theta, C.GRAZING_DEG, lab.phiO === 0) })
       : drawPolar(panel.polar, [curve], theta, each);
   }
   const overlay = $("#overlay");
