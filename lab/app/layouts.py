@@ -214,8 +214,7 @@ def set_layout(win: QMainWindow, name: str) -> None:
     if layout.focus:
         place_focus(win, name)
         win.showFullScreen()
-        # Without a window manager (Xvfb, some projector set-ups) full screen does nothing.
-        win.setGeometry(screen_room(win))
+        QTimer.singleShot(0, lambda: cover_screen(win))
     else:
         for dock in win.docks.values():
             dock.show()
@@ -230,6 +229,14 @@ def set_layout(win: QMainWindow, name: str) -> None:
     QTimer.singleShot(0, lambda: keep_on_screen(win))
     QTimer.singleShot(50, win.fit_docks)  # new fonts and size: lay the docks out again
     win.request()
+
+
+def cover_screen(win: QMainWindow) -> None:
+    """Without a window manager (Xvfb, some projector set-ups) full screen changes nothing:
+    then the presenting window takes the screen's free area itself."""
+    screen = win.screen() or QApplication.primaryScreen()
+    if win.presenting and win.frameGeometry() != screen.geometry():
+        win.setGeometry(screen.availableGeometry())
 
 
 def toggle_presenter(win: QMainWindow) -> None:
