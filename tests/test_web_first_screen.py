@@ -72,3 +72,36 @@ def test_narrow_desktop_keeps_its_layout(browser):
         assert panel["controls"]["top"] >= panel["sphere"]["bottom"] - 1
     finally:
         tab.close()
+
+
+def test_phone_shows_one_view_at_a_time(browser, output_dir):
+    """With extra views on a phone, a menu above each panel's pictures picks the one view
+    shown (the sphere and polar plot first); the same page on a desktop shows them all."""
+    address = "model=phong&views=lobe3d,albedo"
+    shown = """() => [...document.querySelectorAll('#panels > .panel .views')]
+      .flatMap((box) => box.classList.contains('switched-off') ? [] : [box])
+      .flatMap((box) => box.matches('.views + .views')
+        ? [...box.children].filter((v) => v.getClientRects().length).map((v) => v.dataset.view)
+        : ['core'])"""
+    tab = LabTab(browser, address, 390, 844, has_touch=True)
+    try:
+        menu = tab.page.locator("#panels > .panel label.view-switch select")
+        assert menu.count() == 1
+        options = menu.evaluate("s => [...s.options].map((o) => o.value)")
+        assert options[0] == "sphere and polar plot" and len(options) == 3
+        assert tab.js(shown) == ["core"]
+        menu.select_option(options[2])  # the albedo: only it shows, the sphere is hidden
+        assert tab.js(shown) == [options[2]]
+        assert tab.js("document.querySelector('canvas.sphere').getClientRects().length") == 0
+        tab.page.screenshot(path=output_dir / "web_phone_view_switch.png")
+        menu.select_option(options[0])
+        assert tab.js(shown) == ["core"]
+        assert tab.errors == []
+    finally:
+        tab.close()
+    wide = LabTab(browser, address, 1400, 900)
+    try:
+        assert wide.page.locator("label.view-switch:visible").count() == 0
+        assert len(wide.js(shown)) == 3  # the core pictures and both views
+    finally:
+        wide.close()
