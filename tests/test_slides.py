@@ -403,6 +403,33 @@ def test_figure_text_readable_at_720p(deck, deck_720, output_dir):
     assert not small, "text under 24 px at 720p:\n" + "\n".join(small)
 
 
+# A panel's polar plot on screen: its half disc's radius, and whether the L (light) mark's
+# box, drawn at radius + 0.8 font along the light's direction, meets a ring value's box.
+POLAR_MARKS = """([i, thetaI]) => { const p = brdfLab.panel(i), g = p.polarGeometry, c = p.polar;
+  const k = c.clientWidth / c.width;
+  const font = Math.round(parseFloat(getComputedStyle(document.body).fontSize) / k);
+  const r = g.radius + 0.8 * font, a = -thetaI * Math.PI / 180;
+  const x = g.centre[0] - r * Math.sin(a), y = g.centre[1] - r * Math.cos(a);
+  const box = [x - 0.35 * font, y - 0.5 * font, x + 0.35 * font, y + 0.5 * font];
+  const meets = g.ringLabels.filter(([, l, t, rt, b]) =>
+    l < box[2] && rt > box[0] && t < box[3] && b > box[1]).map(([text]) => text);
+  return { radius: g.radius * k, meets }; }"""
+
+
+def test_two_model_demos_give_the_plot_room(deck, deck_720):
+    """Side by side, each model's polar plot gets a taller canvas: on the grazing-light slide
+    (light at 80°) the half disc's radius is at least 80 px on screen (68 before) and the L
+    mark stays clear of the rim's value (it used to sit on the '0.53')."""
+    from lab.web.slides import deck_info
+
+    demo = next(d for d in deck_info(deck)["demos"] if "light=80,0" in d["hash"])
+    frame, scale = show_demo(deck_720, demo["slide"])
+    for i in (0, 1):
+        marks = frame.evaluate(POLAR_MARKS, [i, 80])
+        assert marks["meets"] == [], marks
+        assert marks["radius"] * scale >= 80, marks
+
+
 # How far (screen px) the present slide's content reaches past the slide's box; KaTeX's
 # own stretchy SVG paths are left out (they are clipped by design).
 OVERFLOW = """() => { const box = document.querySelector('.reveal .slides').getBoundingClientRect();

@@ -26,6 +26,14 @@ export function showOnly(names) {
   }
 }
 
+/** Embedded with several models side by side, a panel is narrow and the frame has room
+ * below: the plot's canvas is taller than alone (0.8 of its width, not 0.62), so the half
+ * disc grows and its ring values fit in a row under the baseline, clear of the L mark. */
+export function fitPlotAspect(canvas, panels) {
+  const height = Math.round(canvas.width * (panels > 1 ? 0.8 : 0.62));
+  if (canvas.height !== height) canvas.height = height; // cleared: the next render draws it
+}
+
 /** The angle (whole degrees, -90..90) where a lobe peaks, leaving out grazing as the scale does. */
 export function peakAngle(lum, grazingDeg) {
   let best = -1;

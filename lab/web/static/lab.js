@@ -7,7 +7,7 @@ import { assembleFragment, finishProgram, floatTexture, startProgram, translateL
 import { MODES, SHAPES, VIEWS, VIEW_TITLES } from "./views.js";
 import { IBL_TITLE, IblView, iblHash, readIblHash } from "./ibl.js";
 import { ExerciseMode } from "./exercise.js";
-import { drawCurve, pageFontPx, sharedRange, showOnly } from "./deck.js";
+import { drawCurve, fitPlotAspect, pageFontPx, sharedRange, showOnly } from "./deck.js";
 import { openModelFile, putModel } from "./measured.js";
 import { draft, draftNames, forgetFile, keepDraft, keepFile, keptFiles, storeProblem } from "./store.js";
 import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
@@ -1174,6 +1174,7 @@ function fitEmbed() {
   if (!lab.embed) return;
   document.body.classList.toggle("single", lab.panels.length === 1);
   showOnly(lab.show);
+  lab.panels.forEach((panel) => fitPlotAspect(panel.polar, lab.panels.length));
   const root = document.documentElement;
   const apply = (px) => lab.panels.forEach((panel) => panel.displaySize(px));
   let px = lab.size;
