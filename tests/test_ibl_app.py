@@ -88,3 +88,23 @@ def test_ibl_view_lights_the_object(qtbot, window, output_dir):
     covered = (image[..., 3] > 0.5).mean()
     assert 0.1 < covered < 0.6  # a torus, not the sphere (0.785)
     view.grab().save(str(output_dir / "app_view_ibl_torus.png"))
+
+
+def test_ibl_view_sample_target_and_error_ticks(qtbot, window):
+    """The target menu sets how many samples per pixel the view runs to; the error plot's
+    ticks are percentages and its samples axis whole counts (no '6·10²' for a ratio)."""
+    from layout_checks import tick_texts
+
+    window.lab.add(load_model("ggx"), {"alpha": 0.3})
+    view = ibl_view(qtbot, window)
+    view.samples.setCurrentIndex(view.samples.findData(16))
+    assert window.lab.settings["ibl_samples"] == 16
+    window.settle()
+    qtbot.waitUntil(lambda: view.runs and view.runs[0].samples >= 16, timeout=60000)
+    qtbot.wait(200)
+    assert view.runs[0].samples == 16  # it stops at the target
+    window.lab.settings.set("ibl_samples", 48)  # a preset's own value joins the menu
+    assert view.samples.currentData() == 48
+    left, bottom = tick_texts(view, "left"), tick_texts(view, "bottom")
+    assert left and all(t.endswith("%") for t in left), left
+    assert bottom and all(t.isdigit() for t in bottom), bottom
