@@ -44,25 +44,36 @@ class SliceCanvas(QWidget):
         title = QFontMetrics(self.font()).height()
         return (fm.horizontalAdvance("90°") + line + 10, title + 4, 12, 2 * line + 6)
 
-    def bar_width(self) -> int:
-        """Room on the right for the colour bar and its numbers (0 without one)."""
+    BAR_MIN_SIDE = 64  # plots smaller than this with the bar beside them go without it
+
+    def bar_width(self, count: int | None = None) -> int:
+        """Room on the right for the colour bar and its numbers: 0 without a bar, or where
+        it would shrink the plots below BAR_MIN_SIDE (a small dock; the view's note then
+        names the scale and its top)."""
         if self.bar is None:
             return 0
-        return 18 + QFontMetrics(self.axis_font()).horizontalAdvance("8.8·10⁻⁸ ") + 8
-
-    def plot_rects(self, count: int | None = None) -> list[QRect]:
-        """Where each image goes: squares of one size in the grid (columns x rows) that
-        makes them largest, centred."""
+        room = 18 + QFontMetrics(self.axis_font()).horizontalAdvance("8.8·10⁻⁸ ") + 8
         n = max(count if count is not None else len(self.images), 1)
+        return room if self.grid(self.width() - room, n)[0] >= self.BAR_MIN_SIDE else 0
+
+    def grid(self, width: int, n: int) -> tuple[int, int, int]:
+        """(side, columns, rows) of the grid of n squares in `width` that makes them largest."""
         left, top, right, bottom = self.margins()
-        width = self.width() - self.bar_width()
         best = (0, 1, 1)
         for cols in range(1, n + 1):
             rows = -(-n // cols)
             side = min(width // cols - left - right, self.height() // rows - top - bottom)
             if side > best[0]:
                 best = (side, cols, rows)
-        side, cols, rows = best
+        return best
+
+    def plot_rects(self, count: int | None = None) -> list[QRect]:
+        """Where each image goes: squares of one size in the grid (columns x rows) that
+        makes them largest, centred."""
+        n = max(count if count is not None else len(self.images), 1)
+        left, top, right, bottom = self.margins()
+        width = self.width() - self.bar_width(n)
+        side, cols, rows = self.grid(width, n)
         side = max(side, 16)
         cell_w, cell_h = left + side + right, top + side + bottom
         x0 = (width - cols * cell_w) // 2
@@ -150,7 +161,7 @@ class SliceCanvas(QWidget):
                 "θd",
             )
             painter.restore()
-        if self.bar is not None and self.images:
+        if self.bar is not None and self.images and self.bar_width():
             self.paint_bar(painter, self.plot_rects()[0], font)
         painter.end()
 
@@ -201,8 +212,8 @@ class SliceView(View):
             "would take a scale to the maximum), or the spheres' exposure and gamma"
         )
         self.tools.addWidget(colours)
-        self.note = LiveText(optional=True)  # which scale, where there is room
-        self.layout_.addWidget(self.note)
+        self.note = LiveText(optional=True)  # which scale, beside the menu where it fits
+        self.tools.addWidget(self.note, 2)
         self.canvas = SliceCanvas()
         self.layout_.addWidget(self.canvas, 1)
         self.data: list[tuple[ModelState, np.ndarray]] = []
@@ -253,9 +264,9 @@ class SliceView(View):
             for state, image in self.data:
                 shown = tonemap(scale.coloured(image, low, high, log), 0.0, 1.0)
                 images.append((shown, state.label, state.color))
-            top = f"top: {scale.TOP_PERCENTILE:g}th percentile"
-            self.note.short = f"{'log' if log else 'linear'} scale, {top}"
-            self.note.setText(scale.scale_note(log))
+            top = f"top {scale.tick_label(high)} = {scale.TOP_PERCENTILE:g}th pct"
+            self.note.short = f"{'log' if log else 'linear'}, {top}"
+            self.note.setText(f"{scale.scale_note(log)} ({scale.tick_label(high)} {scale.UNIT})")
         else:
             self.canvas.bar = None
             for state, image in self.data:
