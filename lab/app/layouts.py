@@ -10,6 +10,7 @@ here as the QMainWindow it is, so that the two do not import each other).
 
 from __future__ import annotations
 
+from PyQt6 import sip
 from PyQt6.QtCore import QRect, Qt, QTimer
 from PyQt6.QtGui import QFont
 from PyQt6.QtWidgets import QApplication, QDockWidget, QMainWindow, QWidget
@@ -26,6 +27,11 @@ DOCK_AREAS = {
 PRESENTER_SCALE = 1.6  # widget text when presenting, against the desktop's
 CONTROLS_MIN = 300  # the controls' narrowest: a colour field, its swatch and reset button
 NARROW = 1200  # a screen narrower than this fits two views in a row beside the controls
+
+
+def later(win: QWidget, ms: int, run) -> None:
+    """run() after `ms` milliseconds, unless the window is gone by then (closed at once)."""
+    QTimer.singleShot(ms, lambda: None if sip.isdeleted(win) else run())
 
 
 def screen_room(win: QWidget) -> QRect:
@@ -69,7 +75,7 @@ def pin_width(win: QMainWindow, dock: QDockWidget, width: int) -> None:
         dock.setMinimumWidth(CONTROLS_MIN)
         dock.setMaximumWidth(width if win.presenting else QWIDGETSIZE_MAX)
 
-    QTimer.singleShot(0, release)
+    later(dock, 0, release)
 
 
 def place_desk(win: QMainWindow) -> None:
@@ -214,7 +220,7 @@ def set_layout(win: QMainWindow, name: str) -> None:
     if layout.focus:
         place_focus(win, name)
         win.showFullScreen()
-        QTimer.singleShot(0, lambda: cover_screen(win))
+        later(win, 0, lambda: cover_screen(win))
     else:
         for dock in win.docks.values():
             dock.show()
@@ -226,7 +232,7 @@ def set_layout(win: QMainWindow, name: str) -> None:
     for action in win.layout_actions.values():
         action.setChecked(False)
     win.layout_actions[name].setChecked(True)
-    QTimer.singleShot(0, lambda: keep_on_screen(win))
+    later(win, 0, lambda: keep_on_screen(win))
     QTimer.singleShot(50, win.fit_docks)  # new fonts and size: lay the docks out again
     win.request()
 
@@ -250,7 +256,7 @@ def view_opened(win: QMainWindow, dock: QDockWidget, shown: bool) -> None:
     if shown and not win.presenting:
         dock.raise_()  # a tab opened from the menu comes to the front
     if not shown or not win.presenting:
-        QTimer.singleShot(0, lambda: keep_on_screen(win))
+        later(win, 0, lambda: keep_on_screen(win))
         QTimer.singleShot(0, win.fit_docks)  # an opened tab may want a taller row
         return
     name = dock.objectName()
@@ -259,8 +265,8 @@ def view_opened(win: QMainWindow, dock: QDockWidget, shown: bool) -> None:
         return
     alone = next((k for k, lay in LAYOUTS.items() if lay.views == (name,)), None)
     if alone is not None:
-        QTimer.singleShot(0, lambda: set_layout(win, alone))
+        later(win, 0, lambda: set_layout(win, alone))
     else:  # behind the layout's last view, as a tab
         win.tabifyDockWidget(win.docks[current.views[-1]], dock)
         dock.raise_()
-        QTimer.singleShot(0, lambda: keep_on_screen(win))
+        later(win, 0, lambda: keep_on_screen(win))
