@@ -49,16 +49,17 @@ def test_phone_shows_a_picture_first(browser, output_dir):
         tab.close()
 
 
-def test_wide_screen_keeps_controls_beside_the_sphere(browser, output_dir):
-    tab = LabTab(browser, f"model=phong&model=ward&views={EVERY_VIEW}", 1400, 900)
+@pytest.mark.parametrize("width,height", [(1400, 900), (1024, 768)])
+def test_wide_screen_keeps_controls_beside_the_sphere(browser, output_dir, width, height):
+    tab = LabTab(browser, f"model=phong&model=ward&views={EVERY_VIEW}", width, height)
     try:
         for index, panel in enumerate(tab.js(BOXES)):
             sphere, slider = panel["sphere"], panel["slider"]
-            # The first slider and the sphere's top fit one 900-pixel screen together.
+            # The first slider and the sphere's top fit one screen together.
             span = max(slider["bottom"], sphere["top"]) - min(slider["top"], sphere["top"])
-            assert span <= 900, f"panel {index}: {span:.0f} px from sphere to its first slider"
+            assert span <= height, f"panel {index}: {span:.0f} px from sphere to its slider"
             assert panel["controls"]["left"] > sphere["left"] + sphere["height"] / 2  # beside
-        tab.page.screenshot(path=output_dir / "web_1400x900_every_view.png")
+        tab.page.screenshot(path=output_dir / f"web_{width}x{height}_every_view.png")
         assert tab.errors == []
     finally:
         tab.close()
