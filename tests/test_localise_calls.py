@@ -69,3 +69,18 @@ def test_slips_named_by_values(tmp_path, exercise, edits, said, unsaid):
         assert any(said in h for h in hints), hints
     if unsaid:
         assert not any(unsaid in h for h in hints), hints
+
+
+def test_several_lights_are_told_apart_light_by_light(tmp_path):
+    """Radiance is linear in the lights: exercise 04 with the ambient term added once per
+    light is told that the ambient light alone differs while every light alone matches."""
+    wrong = [
+        ("vec3 color = ka * ambient;", "vec3 color = vec3(0.0);"),
+        (
+            "        if (l >= count) break;\n",
+            "        if (l >= count) break;\n        color += ka * ambient;\n",
+        ),
+    ]
+    hints = grade(tmp_path, "04_phong_illumination", wrong)
+    told = [h for h in hints if "light by light" in h.lower()]
+    assert told and all("the ambient light alone differs" in h for h in told), hints

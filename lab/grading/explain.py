@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from lab.glsl import ShaderCompileError
-from lab.grading import diagnosis, mistakes
+from lab.grading import diagnosis, mistakes, superpose
 from lab.grading.checks import Grader, expected_value, hidden_variant, render
 from lab.grading.evidence import Located, TraceEvidence
 from lab.grading.exercise import Check, Exercise, ExerciseError, SubmissionError, build_model
@@ -311,7 +311,29 @@ class Explainer(TraceEvidence):
         reading=None,
     ) -> str:
         """'Likely: ...' for a failed check, or '' when the evidence names nothing;
-        `reading` is the grader's lab.grading.checks.Submission of the file, if any."""
+        `reading` is the grader's lab.grading.checks.Submission of the file, if any. A
+        render with several lights also says which of them is wrong alone (superpose)."""
+        said = self._explain(exercise, check, model, expected, raw, live, reading)
+        try:
+            solution = self.grader.solution_model(exercise)
+            lights = superpose.light_by_light(self.grader.renderer, check, model, solution)
+        except (OSError, ShaderCompileError, ModelError, SubmissionError):
+            lights = ""
+        if lights:
+            lights = f"{lights[0].upper()}{lights[1:]}."
+            return f"{said} {lights}" if said else lights
+        return said
+
+    def _explain(
+        self,
+        exercise: Exercise,
+        check: Check,
+        model: Model,
+        expected: np.ndarray,
+        raw: np.ndarray,
+        live: bool,
+        reading=None,
+    ) -> str:
         hints = mistakes.read_hints(exercise)
         kind = kind_of(check)
         got = kind.stored(raw, check)  # the form of the reference and the variants' values
