@@ -10,12 +10,16 @@ from lab.errors import UsageError
 
 
 def _exercises(paths: list[str]):
+    """The exercises under `paths`, each validated with its mistakes.toml (UsageError)."""
+    from lab.grading import mistakes
     from lab.grading.exercise import ExerciseError, find_exercises
 
     found = []
     try:
         for path in paths:
             found += find_exercises(path)
+        for exercise in found:
+            mistakes.validate(exercise)
     except ExerciseError as err:
         raise UsageError(str(err)) from None
     return found
@@ -91,10 +95,15 @@ def _grade(args) -> int:
     if args.make_references:
         from lab.grading.references import make_references
 
+        from lab.grading.exercise import ExerciseError
+
         _exercises(args.exercise)
-        for path in args.exercise:
-            for written in make_references(path):
-                print(f"wrote {written}")
+        try:
+            for path in args.exercise:
+                for written in make_references(path):
+                    print(f"wrote {written}")
+        except ExerciseError as err:
+            raise UsageError(str(err)) from None
         return 0
     # The worker starts first: it loads numpy and OpenGL and makes its context while this
     # process reads the exercises and the report code (one exercise: latency is the point).

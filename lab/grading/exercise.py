@@ -14,7 +14,7 @@ from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
 from lab.glsl import SAMPLER_LINE_BASE, guard_loops, label_of
-from lab.grading import kinds
+from lab.grading import kinds, schema
 from lab.grading.scope import check_names, exercise_names
 from lab.grading.spec import Check, ExerciseError, with_reference  # noqa: F401
 from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
@@ -26,7 +26,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 MAX_BYTES = 256 * 1024
-DEFAULT_API = ("PI", "INV_PI", "EPS")  # terms/common.glsl's constants: an exercise without `api`
+DEFAULT_API = tuple(schema.DEFAULT_API)  # an exercise without `api`
 
 
 class SubmissionError(ValueError):
@@ -83,49 +83,135 @@ class Exercise:
 
 
 def load_exercise(folder: str | Path) -> Exercise:
-    """Read `folder/exercise.toml`; raises ExerciseError with the file and what is wrong."""
+    """Read `folder/exercise.toml`, validated against lab.grading.schema; raises
+    ExerciseError with the file, the line and what is wrong."""
     folder = Path(folder)
     spec_path = folder / "exercise.toml"
     if not spec_path.is_file():
         raise ExerciseError(f"{folder}: not an exercise folder (no exercise.toml in it)")
     try:
-        spec = tomllib.loads(spec_path.read_text(encoding="utf-8"))
+        text = spec_path.read_text(encoding="utf-8")
+        spec = tomllib.loads(text)
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
         raise ExerciseError(f"{spec_path}: {err}") from None
-    try:
-        defaults = spec.get("defaults", {})
-        checks = []
-        for raw in spec["checks"]:
-            merged = {**defaults, **raw}
-            name = merged.pop("kind")
-            kind = kinds.find(name) if isinstance(name, str) else None
-            if kind is None:
-                raise ExerciseError(
-                    f"{spec_path}: check kind {name!r} is not one of {kinds.names()}"
-                )
-            checks.append(kind.parse(merged, str(spec_path)))
-        exercise = Exercise(
-            folder=folder,
-            title=spec["title"],
-            student_file=spec["student_file"],
-            checks=checks,
-            functions=list(spec.get("functions", [])),
-            wrapper=spec.get("wrapper"),
-            replaces=spec.get("replaces"),
-            loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
-            sampler_for=spec.get("sampler_for"),
-            api=[str(name) for name in spec.get("api", DEFAULT_API)],
-        )
-    except (KeyError, TypeError) as err:
-        raise ExerciseError(f"{spec_path}: missing or malformed entry {err}") from None
+    where, lines = str(spec_path), schema.Lines(text)
+    schema.check_keys(
+        spec, list(schema.EXERCISE), where, "exercise.toml", lambda k: lines.line("", 0, k)
+    )
+    schema.require(spec, schema.EXERCISE, where, "exercise.toml", lines.line("", 0))
+    defaults = spec.get("defaults", {})
+    every = [
+        *schema.CHECK,
+        *(k for kind in kinds.all_kinds().values() for k in schema.kind_keys(kind)),
+    ]
+    unique = list({k.name: k for k in every}.values())
+    schema.check_keys(defaults, unique, where, "[defaults]", lambda k: lines.line("defaults", 0, k))
+    checks = []
+    for index, raw in enumerate(spec["checks"]):
+        merged = {**defaults, **raw}
+
+        def place(key: str, index: int = index, raw: dict = raw) -> int:
+            return lines.line(
+                "checks" if key in raw else "defaults", index if key in raw else 0, key
+            )
+
+        label = f"check {merged.get('name', index + 1)}"
+        schema.check_keys(merged, unique, where, label, place)  # a misspelt key first
+        schema.require(merged, schema.CHECK, where, label, lines.line("checks", index))
+        name = merged.pop("kind")
+        kind = kinds.find(name) if isinstance(name, str) else None
+        if kind is None:
+            raise ExerciseError(
+                f"{where}:{place('kind')}: check kind {name!r} is not one of "
+                f"{', '.join(kinds.names())}"
+            )
+        schema.check_table_keys(merged, kind, where, place, own=set(raw))
+        try:
+            checks.append(kind.parse(merged, where))
+        except (KeyError, TypeError, ValueError) as err:
+            if isinstance(err, ExerciseError):
+                raise
+            raise ExerciseError(
+                f"{where}:{place('name')}: check {merged.get('name')}: {err}"
+            ) from None
+    exercise = Exercise(
+        folder=folder,
+        title=spec["title"],
+        student_file=spec["student_file"],
+        checks=checks,
+        functions=list(spec.get("functions", [])),
+        wrapper=spec.get("wrapper"),
+        replaces=spec.get("replaces"),
+        loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
+        sampler_for=spec.get("sampler_for"),
+        api=[str(name) for name in spec.get("api", DEFAULT_API)],
+    )
     if exercise.loop_limit < 1:
-        raise ExerciseError(f"{spec_path}: loop_limit must be a positive number of iterations")
+        raise ExerciseError(
+            f"{where}:{lines.line('', 0, 'loop_limit')}: loop_limit must be a positive number "
+            "of iterations"
+        )
+    _check_params(exercise, spec, where, lines)
     wrapper = exercise.wrapper or exercise.sampler_for  # the value kinds' conditioning:
     exercise.checks = with_reference(exercise.checks, exercise.model_name, exercise.stub, wrapper)
-    names = [c.name for c in exercise.checks]
-    if len(set(names)) != len(names):
-        raise ExerciseError(f"{spec_path}: two checks share a name")
+    seen: dict[str, int] = {}
+    for index, check in enumerate(exercise.checks):
+        if check.name in seen:
+            raise ExerciseError(
+                f"{where}:{lines.line('checks', index, 'name')}: two checks are named "
+                f"{check.name!r} (the other at line {seen[check.name]}); give each its own name"
+            )
+        seen[check.name] = lines.line("checks", index, "name")
     return exercise
+
+
+def header_params(exercise: Exercise) -> dict[str, Param] | None:
+    """The parameters a check may set: the wrapper's or sampled model's header, else the
+    stub's (None when it cannot be read: the stub is missing or its header is broken)."""
+    library = exercise.wrapper or exercise.sampler_for
+    for name in (exercise.wrapper, exercise.replaces, exercise.sampler_for):
+        if name is not None and not isinstance(name, str):
+            return None
+    try:
+        if library:
+            return load_model(library).params
+        return parse_model(exercise.stub.read_text("utf-8"), exercise.stub).params
+    except (OSError, ModelError, UnicodeDecodeError):
+        return None
+
+
+def _check_params(exercise: Exercise, spec: dict, where: str, lines) -> None:
+    """Each parameter a check sets or draws is one of the model's, with a value of its type."""
+    library = exercise.wrapper or exercise.sampler_for
+    if library:
+        try:
+            load_model(library)
+        except ModelError as err:
+            key = "wrapper" if exercise.wrapper else "sampler_for"
+            raise ExerciseError(
+                f"{where}:{lines.line('', 0, key)}: {key} = {library!r}: {err}"
+            ) from None
+    header = header_params(exercise)
+    if header is None:
+        return
+    for index, check in enumerate(exercise.checks):
+        raw = spec["checks"][index]
+        for key, names in (("params", check.params), ("ranges", check.ranges)):
+            line = lines.line(*(("checks", index) if key in raw else ("defaults", 0)), key)
+            schema.check_param_names(names, header, where, line, f"check {check.name}: {key}")
+        line = lines.line(*(("checks", index) if "ranges" in raw else ("defaults", 0)), "ranges")
+        for name, (low, high) in check.ranges.items():
+            param = header[name]
+            if param.kind == "float" and (low < param.minimum or high > param.maximum):
+                raise ExerciseError(
+                    f"{where}:{line}: check {check.name}: ranges.{name} = [{low:g}, {high:g}] "
+                    f"leaves the header's range [{param.minimum:g}, {param.maximum:g}]; narrow it"
+                )
+        line = lines.line(*(("checks", index) if "params" in raw else ("defaults", 0)), "params")
+        for name, value in check.params.items():
+            problem = schema.param_value_problem(header[name], value)
+            if problem:
+                raise ExerciseError(f"{where}:{line}: check {check.name}: params.{name} {problem}")
 
 
 def find_exercises(root: str | Path) -> list[Exercise]:

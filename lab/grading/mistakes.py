@@ -20,13 +20,16 @@ live in hidden mode. Everything here runs without OpenGL.
 
 from __future__ import annotations
 
+import difflib
 import json
 import re
 import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from lab.grading.exercise import Exercise, ExerciseError
+from lab.glsl import label_of
+from lab.grading import schema
+from lab.grading.exercise import Exercise, ExerciseError, header_params
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -88,19 +91,106 @@ def mistakes_file(exercise: Exercise) -> Path:
 
 
 def known_mistakes(exercise: Exercise) -> list[Variant]:
-    """The instructor's list for an exercise (none when the file does not exist)."""
+    """The instructor's list for an exercise (none when the file does not exist), validated
+    against lab.grading.schema: each edit must apply to the solution where it is there."""
     path = mistakes_file(exercise)
     if not path.is_file():
         return []
+    spec, lines = _read_list(path)
+    where = str(path)
     try:
-        spec = tomllib.loads(path.read_text(encoding="utf-8"))
-        found = []
-        for number, raw in enumerate(spec.get("mistake", [])):
-            edits = tuple((str(old), str(new)) for old, new in raw["edits"])
-            found.append(Variant(f"mistake.{number}", str(raw["hint"]).strip(), edits))
-    except (tomllib.TOMLDecodeError, KeyError, TypeError, ValueError) as err:
-        raise ExerciseError(f"{path}: malformed mistake list ({err})") from None
+        solution = exercise.solution.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        solution = None  # a student's copy: the grader reads the stored values instead
+    found = []
+    for number, raw in enumerate(spec.get("mistake", [])):
+        line = lines.line("mistake", number)
+        schema.check_keys(
+            raw,
+            list(schema.MISTAKE),
+            where,
+            f"mistake {number + 1}",
+            lambda k, n=number: lines.line("mistake", n, k),
+        )
+        schema.require(raw, schema.MISTAKE, where, f"mistake {number + 1}", line)
+        variant = Variant(
+            f"mistake.{number}",
+            str(raw["hint"]).strip(),
+            tuple((old, new) for old, new in raw["edits"]),
+        )
+        if solution is not None:
+            line = lines.line("mistake", number, "edits")
+            _check_edits(variant, solution, f"{where}:{line}", label_of(exercise.solution))
+        found.append(variant)
     return found
+
+
+def _read_list(path: Path) -> tuple[dict, schema.Lines]:
+    """mistakes.toml read and its top-level keys and terms checked."""
+    try:
+        text = path.read_text(encoding="utf-8")
+        spec = tomllib.loads(text)
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+        raise ExerciseError(f"{path}: {err}") from None
+    lines = schema.Lines(text)
+    schema.check_keys(
+        spec, list(schema.MISTAKES_TOP), str(path), "mistakes.toml", lambda k: lines.line("", 0, k)
+    )
+    for name, term in spec.get("terms", {}).items():
+        line = lines.line("terms", 0, name)
+        if not isinstance(term, dict):
+            raise ExerciseError(
+                f"{path}:{line}: terms.{name} should be a table of parameter settings, e.g. "
+                f"{name} = {{ ks = [0.0, 0.0, 0.0] }}"
+            )
+        for key in ("define", "within"):
+            if key in term:
+                schema.check_keys(
+                    {key: term[key]},
+                    list(schema.TERM),
+                    str(path),
+                    f"terms.{name}",
+                    lambda k, ln=line: ln,
+                )
+    return spec, lines
+
+
+def _check_edits(variant: Variant, solution: str, where: str, solution_label: str) -> None:
+    """Each edit's old text occurs below the solution's header once the earlier edits are
+    made; else the error shows the nearest line of the solution to copy from."""
+    body = solution[_code_start(solution) :]
+    for index, (old, new) in enumerate(variant.edits):
+        if old not in body:
+            near = difflib.get_close_matches(
+                old.strip(), [ln.strip() for ln in body.splitlines()], 1, 0.4
+            )
+            hint = f"; the nearest line of the solution is {near[0]!r}" if near else ""
+            raise ExerciseError(
+                f"{where}: mistake {int(variant.key.split('.')[1]) + 1} "
+                f"({variant.hint[:40]!r}...), "
+                f"edit {index + 1}: {old!r} is not in {solution_label}"
+                f"{' after the edits before it' if index else ''}{hint}; copy the old text from "
+                "the solution exactly, spaces included"
+            )
+        body = body.replace(old, new, 1)
+
+
+def validate(exercise: Exercise) -> None:
+    """The exercise's mistakes.toml, where there is one: keys, types, edits that apply to
+    the solution and [terms] that set the model's own parameters (ExerciseError)."""
+    path = mistakes_file(exercise)
+    if not path.is_file():
+        return
+    known_mistakes(exercise)
+    header = header_params(exercise)
+    if header is None:
+        return
+    spec, lines = _read_list(path)
+    for name, term in spec.get("terms", {}).items():
+        params = [k for k in term if k not in ("define", "within")]
+        schema.check_param_names(
+            params, header, str(path), lines.line("terms", 0, name), f"terms.{name}"
+        )
 
 
 def _code_start(code: str) -> int:
@@ -269,7 +359,7 @@ def declared_terms(exercise: Exercise) -> dict[str, dict]:
     path = mistakes_file(exercise)
     if not path.is_file():
         return {}
-    spec = tomllib.loads(path.read_text(encoding="utf-8"))
+    spec = _read_list(path)[0]
     return {
         name: {k: tuple(v) if isinstance(v, list) else v for k, v in params.items()}
         for name, params in spec.get("terms", {}).items()
