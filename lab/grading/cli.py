@@ -360,3 +360,7 @@ def register(sub) -> None:
         help="the class's exercises: names or their starts, comma-separated (default: all)",
     )
     p.set_defaults(func=cmd_bench)
+
+    from lab.grading import authoring
+
+    authoring.register(sub)
