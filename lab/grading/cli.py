@@ -93,9 +93,8 @@ def _grade(args) -> int:
     from lab.grading.runner import Pool
 
     if args.make_references:
-        from lab.grading.references import make_references
-
         from lab.grading.exercise import ExerciseError
+        from lab.grading.references import make_references
 
         _exercises(args.exercise)
         try:

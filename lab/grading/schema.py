@@ -87,7 +87,7 @@ TYPES: dict[str, tuple[Any, str]] = {
     "table": (lambda v: isinstance(v, dict), "a table, e.g. [defaults] or { ... }"),
     "tables": (
         lambda v: isinstance(v, list) and all(isinstance(x, dict) for x in v),
-        "an array of tables: repeat [[checks]] once per check",
+        "an array of tables: one [[checks]] or [[mistake]] header per entry",
     ),
 }
 
@@ -161,7 +161,7 @@ FIELD_MEANINGS: dict[tuple[str, str], str] = {
     ("chi_square", "samples"): "samples per view (1000 to 4000000)",
     ("chi_square", "alpha"): "significance of the test over all views (0 to 0.5)",
     ("pdf_integral", "views"): "extra view directions [theta, phi] the pdf is integrated at",
-    ("pdf_integral", "tolerance"): "allowed |integral - 1| of the pdf (0 to 0.5)",
+    ("pdf_integral", "tolerance"): "allowed distance of the pdf's integral from 1 (0 to 0.5)",
     ("pdf_integral", "samples"): "quadrature samples per view",
     ("ibl_render", "samples"): "samples per pixel of the graded render",
     ("ibl_render", "converged"): "samples per pixel of the converged reference",
@@ -357,11 +357,15 @@ def reference_markdown() -> str:
         "",
         *_rows(CHECK, True),
         "",
-        "Types: " + "; ".join(f"**{name}**: {words}" for name, (_, words) in TYPES.items()),
+        "Types:",
         "",
-        "Light purposes (`purpose`): "
-        + ", ".join(f"`{n}` ({lo:g}-{hi:g} deg)" for n, (lo, hi) in PURPOSES.items())
-        + ". A sphere check names one per light (angle from the view axis); polar and the",
+        *(f"- **{name}**: {words}" for name, (_, words) in TYPES.items()),
+        "",
+        "Light purposes (`purpose`), by the light's angle in degrees:",
+        "",
+        *(f"- `{n}`: {lo:g} to {hi:g}" for n, (lo, hi) in PURPOSES.items()),
+        "",
+        "A sphere check names one per light (angle from the view axis); polar and the",
         "sampling kinds name the light at theta_i; probe draws its own directions and takes",
         "none. Without `purpose`, hidden mode infers it from each committed angle.",
         "",
@@ -378,7 +382,7 @@ def reference_markdown() -> str:
     ]
     for kind in kinds.all_kinds().values():
         extra = kind_keys(kind)
-        if not extra:
+        if not extra or not kind.__module__.startswith("lab.grading.kinds."):
             continue
         out += [f'### `kind = "{kind.name}"`', "", *_rows(extra, False), ""]
     out += [
