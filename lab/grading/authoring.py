@@ -143,7 +143,9 @@ def check(folder: Path, seed: int = 1, timeout: float = 20.0) -> int:
 
 
 def cmd_exercise(args) -> int:
-    folder = Path(args.dir)
+    from lab.grading.installed import resolve
+
+    folder = resolve(args.dir)
     if not (folder / "exercise.toml").is_file():
         raise UsageError(f"{folder}: not an exercise folder (no exercise.toml in it)")
     return check(folder, args.seed, args.timeout)

@@ -13,11 +13,12 @@ def _exercises(paths: list[str]):
     """The exercises under `paths`, each validated with its mistakes.toml (UsageError)."""
     from lab.grading import mistakes
     from lab.grading.exercise import ExerciseError, find_exercises
+    from lab.grading.installed import resolve
 
     found = []
     try:
         for path in paths:
-            found += find_exercises(path)
+            found += find_exercises(resolve(path))
         for exercise in found:
             mistakes.validate(exercise)
     except ExerciseError as err:
@@ -94,12 +95,13 @@ def _grade(args) -> int:
 
     if args.make_references:
         from lab.grading.exercise import ExerciseError
+        from lab.grading.installed import resolve
         from lab.grading.references import make_references
 
         _exercises(args.exercise)
         try:
             for path in args.exercise:
-                for written in make_references(path):
+                for written in make_references(resolve(path)):
                     print(f"wrote {written}")
         except ExerciseError as err:
             raise UsageError(str(err)) from None
@@ -118,12 +120,7 @@ def _grade_with(pool, args) -> int:
         raise UsageError("--submission grades one exercise: give one EXERCISE_DIR (or use --from)")
     missing = [e for e in exercises if not e.solution.is_file()] if args.seed is not None else []
     if missing:
-        raise UsageError(
-            f"--seed (hidden mode) renders the solutions live and {missing[0].solution} is "
-            "not there: only the instructor's copy has solutions/ beside exercises/. Without "
-            "--seed the grader runs in practice mode against the committed references: "
-            f"brdf-lab grade {missing[0].folder} --submission YOUR_FILE"
-        )
+        raise UsageError(seed_needs(missing[0]))
     outputs = {k: _output(getattr(args, k)) for k in ("json", "html", "classroom")}
     tasks = []
     for exercise in exercises:
@@ -151,6 +148,23 @@ def _grade_with(pool, args) -> int:
         report.write_json(result, outputs["classroom"])
     report.write_github_output(result)
     return 0 if all(t.passed for t in tasks) else 1
+
+
+def seed_needs(exercise) -> str:
+    """Why --seed cannot grade `exercise` here, and what works instead."""
+    from lab.resources import data_dir
+
+    shipped = exercise.folder.resolve().parent == data_dir("exercises").resolve()
+    return (
+        f"--seed (hidden mode) renders the solution live with random parameters, and "
+        f"{exercise.solution} is not there. An install of brdf-lab carries no solutions "
+        "(students must not read them); they come with a clone, the sdist or your course's "
+        "definitions archive, as solutions/NN_topic beside exercises/NN_topic. Instructors: "
+        "brdf-lab grade DEFS/exercises/NN_topic --from STUDENT_DIR --seed N. Students: leave "
+        "out --seed to grade against the committed references: brdf-lab grade "
+        f"{exercise.name if shipped else exercise.folder} "
+        "--submission YOUR_FILE"
+    )
 
 
 def _load_report() -> None:
@@ -287,6 +301,12 @@ def cmd_gradescope_zip(args) -> int:
 def cmd_bench(args) -> int:
     from lab.grading import bench
 
+    if not (bench.ROOT / "solutions").is_dir() or not (bench.ROOT / "exercises").is_dir():
+        raise UsageError(
+            "grade-bench grades a made-up class built from the solutions, which an install "
+            "of brdf-lab does not carry (students must not read them): run it in a clone, "
+            "python -m lab.cli grade-bench"
+        )
     bench.run(submissions=args.submissions, workers=args.workers, only=args.exercises)
     return 0
 
@@ -298,7 +318,8 @@ def register(sub) -> None:
         "exercise",
         nargs="+",
         metavar="EXERCISE_DIR",
-        help="exercise folder(s), or a folder of exercise folders",
+        help="exercise folder(s), a folder of them, or an installed exercise's number or "
+        "name (02, phong)",
     )
     p.add_argument("--submission", metavar="FILE", help="the file to grade (default: the stub)")
     p.add_argument(
@@ -360,6 +381,7 @@ def register(sub) -> None:
     )
     p.set_defaults(func=cmd_bench)
 
-    from lab.grading import authoring
+    from lab.grading import authoring, installed
 
     authoring.register(sub)
+    installed.register(sub)
