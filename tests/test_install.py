@@ -248,3 +248,39 @@ def test_slides_build_from_a_writable_copy_of_the_installed_sources(installed, t
     assert Path(workdir).is_relative_to(tmp_path)
     for name in ("lecture.md", "build.mjs", "package-lock.json"):
         assert (Path(workdir) / name).read_bytes() == (ROOT / "slides" / name).read_bytes()
+
+
+def test_exercises_from_the_install_by_number_and_name(installed, tmp_path):
+    """An install has no exercises/ folder: `exercises list` shows what it carries,
+    `exercises copy` makes a working folder, `grade` finds an exercise by its number, its
+    topic or the README's `exercises/NN_topic`, and grades the same as from a path."""
+    script, _, work = installed
+    listing = ok(run(script, "exercises", "list", cwd=work))
+    shipped = sorted(p.parent.name for p in (ROOT / "exercises").glob("*/exercise.toml"))
+    assert [ln.split()[0] for ln in listing.splitlines()[1:-1]] == shipped
+    mine = tmp_path / "my work"
+    ok(run(script, "exercises", "copy", "02", "blinn_phong", str(mine), cwd=work))
+    assert (mine / "02_phong" / "phong.glsl").read_bytes() == (
+        ROOT / "exercises" / "02_phong" / "phong.glsl"
+    ).read_bytes()
+    assert (mine / "03_blinn_phong" / "references" / "values.npz").is_file()
+    again = run(script, "exercises", "copy", "02", str(mine), cwd=work)
+    assert again.returncode == 2 and "exists already" in again.stderr
+    solution = ROOT / "solutions" / "02_phong" / "phong.glsl"
+    shutil.copy(solution, mine / "02_phong" / "phong.glsl")
+    for name in ("02", "phong", "exercises/02_phong"):
+        graded = run(script, "grade", name, "--submission", str(solution), cwd=work)
+        assert ok(graded).splitlines()[-1] == "total 10/10", name
+    assert ok(run(script, "grade", str(mine / "02_phong"), cwd=work)).endswith("total 10/10\n")
+    stub = run(script, "grade", "phong", cwd=work)
+    assert stub.returncode == 1 and stub.stdout.splitlines()[-1] == "total 0/10"
+    unknown = run(script, "grade", "phongg", cwd=work)
+    assert unknown.returncode == 2 and "exercises list" in unknown.stderr
+
+
+def test_commands_that_need_the_solutions_say_so_in_an_install(installed):
+    script, _, work = installed
+    for args in (["grade", "02", "--seed", "3"], ["grade-bench"], ["exercise", "check", "02"]):
+        result = run(script, *args, cwd=work)
+        assert result.returncode == 2, (args, result.stderr)
+        assert "internal error" not in result.stderr and "solution" in result.stderr, args
