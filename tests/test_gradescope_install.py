@@ -170,7 +170,7 @@ def test_dockerfile_runs_the_setup_script_and_nothing_else():
     assert steps[-2:] == ['ENTRYPOINT ["brdf-lab", "grade"]', 'CMD ["--help"]']
     setup = (ROOT / "lab" / "grading" / "templates" / "setup.sh").read_text()
     read = set(re.findall(r'\$SOURCE"?/([\w.*-]+)', setup))
-    assert read == {"brdf_lab-*.whl", "requirements-core.txt"}
+    assert read == {"brdf_lab-*.whl", "requirements-core.txt", "constraints-core.txt"}
 
 
 def test_the_zip_holds_wheel_scripts_dockerfile_and_definitions(autograder):
@@ -185,6 +185,20 @@ def test_the_zip_holds_wheel_scripts_dockerfile_and_definitions(autograder):
     assert (source / "requirements-core.txt").read_text() == (
         ROOT / "lab" / "requirements-core.txt"
     ).read_text()
+
+
+def test_the_grading_venv_has_the_pinned_versions(autograder):
+    """setup.sh installs with constraints-core.txt: each pinned package at its version."""
+    from lab.grading.lock import pinned
+
+    root, env, _ = autograder
+    frozen = subprocess.run(
+        [str(root / "venv" / "bin" / "python"), "-m", "pip", "freeze"],
+        env=env, capture_output=True, text=True, check=True,
+    ).stdout  # fmt: skip
+    have = pinned(frozen)
+    pins = pinned((root / "source" / "constraints-core.txt").read_text())
+    assert pins and pins == {name: have[name] for name in pins}
 
 
 def test_reference_mode_zip_leaves_the_solutions_out(tmp_path):

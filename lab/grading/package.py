@@ -1,4 +1,5 @@
-"""The Gradescope autograder zip: the built wheel, the lean requirements, the exercises.
+"""The Gradescope autograder zip: the built wheel, the lean requirements and their pinned
+versions (constraints-core.txt), the exercises.
 
 Unpacked by Gradescope into /autograder/source. setup.sh installs the wheel with the lean
 dependency set (no Qt, no matplotlib) into /autograder/venv; the Dockerfile builds the
@@ -21,6 +22,7 @@ from lab.resources import package_dir
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 REQUIREMENTS = package_dir() / "requirements-core.txt"
+CONSTRAINTS = package_dir() / "constraints-core.txt"  # lab.grading.lock writes it
 SCRIPTS = ("setup.sh", "run_autograder")  # executable, as Gradescope requires
 
 
@@ -101,6 +103,7 @@ def gradescope_zip(
                 "run_autograder": run_script(exercises, hidden, seed),
                 "Dockerfile": (TEMPLATES / "Dockerfile").read_text(encoding="utf-8"),
                 "requirements-core.txt": REQUIREMENTS.read_text(encoding="utf-8"),
+                "constraints-core.txt": CONSTRAINTS.read_text(encoding="utf-8"),
             }
             for name, text in texts.items():
                 info = zipfile.ZipInfo(name)

@@ -20,6 +20,9 @@ if [ -n "$missing" ]; then
     rm -rf /var/lib/apt/lists/*
 fi
 python3 -m venv "$AG/venv"
-# The core set first: pip then has nothing to complain about when the wheel comes --no-deps.
-"$AG/venv/bin/python" -m pip install --no-cache-dir -r "$SOURCE/requirements-core.txt"
+# The core set first, at the pinned versions of constraints-core.txt (a grade must not
+# change because a dependency released): pip then has nothing to complain about when the
+# wheel comes --no-deps.
+"$AG/venv/bin/python" -m pip install --no-cache-dir -r "$SOURCE/requirements-core.txt" \
+    -c "$SOURCE/constraints-core.txt"
 "$AG/venv/bin/python" -m pip install --no-cache-dir --no-deps "$SOURCE"/brdf_lab-*.whl
