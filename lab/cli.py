@@ -13,7 +13,7 @@ from pathlib import Path
 from lab import __version__, views
 from lab.errors import UsageError, check_output, parse_light, parse_pair, parse_rgb
 from lab.models import MODEL_DIR, ModelError
-from lab.resources import ResourceError
+from lab.resources import ResourceError, install_line
 
 # Packages of the whole lab that the lean (grading) install leaves out: lab/requirements-app.txt.
 APP_MODULES = {"PyQt6", "pyqtgraph", "glfw", "matplotlib", "scipy"}
@@ -348,7 +348,7 @@ def main(argv: list[str] | None = None) -> int:
         if isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] in APP_MODULES:
             print(
                 f"brdf-lab: error: '{args.command}' needs {err.name}, which the lean install of "
-                "brdf-lab leaves out: install the whole lab with 'pip install brdf-lab'",
+                f'brdf-lab leaves out: install the whole lab with pip install "{install_line()}"',
                 file=sys.stderr,
             )
             return 2

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
-from lab.resources import data_dir
+from lab.resources import data_dir, install_line
 
 SHADER_DIR = data_dir("shaders").resolve()
 MODEL_DIR = SHADER_DIR / "brdfs"
@@ -352,8 +352,8 @@ def model_names() -> list[str]:
     if not MODEL_DIR.is_dir():
         raise ModelError(
             f"the shader library {MODEL_DIR} is missing from this install of brdf-lab: "
-            "reinstall it ('pip install --force-reinstall brdf-lab', or 'pip install -e .' in a "
-            "clone)"
+            f'reinstall it (pip install --force-reinstall "{install_line()}", or '
+            "'pip install -e .' in a clone)"
         )
     return sorted(p.stem for p in MODEL_DIR.glob("*.glsl"))
 

@@ -13,6 +13,15 @@ from pathlib import Path
 
 # Top-level folders of the repository that the wheel carries as lab/_data/<name>.
 DATA_FOLDERS = ("shaders", "slides", "exercises")
+REPOSITORY = "https://github.com/brdf-lab/brdf-lab"
+
+
+def install_line(extra: str = "") -> str:
+    """The pip requirement that installs this release today (no PyPI release yet): the
+    repository at its version tag. README, error hints and course init use this line."""
+    from lab import __version__
+
+    return f"brdf-lab{extra} @ git+{REPOSITORY}@v{__version__}"
 
 
 class ResourceError(RuntimeError):
@@ -39,6 +48,7 @@ def require_dir(path: Path, what: str) -> Path:
     if not path.is_dir():
         raise ResourceError(
             f"{what} ({path}) is missing from this install of brdf-lab: reinstall it "
-            "('pip install --force-reinstall brdf-lab', or 'pip install -e .' in a clone)"
+            f"(pip install --force-reinstall \"{install_line()}\", or 'pip install -e .' in a "
+            "clone)"
         )
     return path

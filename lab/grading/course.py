@@ -1,27 +1,30 @@
-"""A GitHub Classroom template repository: `brdf-lab course init DIR` and `course check DIR`.
+"""A GitHub Classroom template repository: `brdf-lab course pack`, `course init`, `course check`.
 
 The repository holds what students see: the chosen exercises (handout, stub, checks and
 references for practice at home), a README, a .gitignore and the Classroom workflow. The
-workflow grades with the course's own definitions, an archive pinned by its SHA-256 (by
-default the sdist of this lab release, which carries exercises/ and solutions/), in hidden
-mode seeded by the commit: editing the student's copy of the checks changes nothing.
+workflow installs the grader from one pinned install line and grades with the course's
+definitions (exercises/ and solutions/, built-in or the instructor's own), a private
+archive read with a token from an Actions secret and checked against its SHA-256, in
+hidden mode seeded by the commit: editing the student's copy of the checks changes nothing.
 """
 
 from __future__ import annotations
 
 import hashlib
 import io
+import os
 import re
 import shutil
+import tarfile
+import tempfile
 from pathlib import Path
 
-from lab import __version__
 from lab.errors import UsageError
+from lab.grading import sources
 from lab.resources import data_dir
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 WORKFLOW = Path(".github") / "workflows" / "classroom.yml"
-PYPI_SDIST = "https://files.pythonhosted.org/packages/source/b/brdf-lab/brdf_lab-{v}.tar.gz"
 OUTPUTS = ("classroom-result.json", "grading-report.html", "results.json")
 GITIGNORE = """\
 # brdf-lab: grading outputs and local environments
@@ -31,139 +34,147 @@ __pycache__/
 out/
 .DS_Store
 """
-README = """\
-# {title}
+HOW = "see 'Teaching with it: GitHub Classroom' in brdf-lab's README"
 
-Exercises of the BRDF lab. Each folder in `exercises/` holds a handout (`README.md`) and
-the one GLSL file you edit. Push your work: GitHub grades every push (the Actions tab
-shows the result; download `grading-report` for the details).
 
-## Set-up on your computer
+# -- the definitions archive -----------------------------------------------------------------
+def pack(out: Path, source: Path, wanted: list[str] | None = None) -> list[str]:
+    """definitions.tar.gz from `source` (holding exercises/ and solutions/): every exercise
+    validated, with its solution and rendered references; returns the exercise names."""
+    from lab.grading import mistakes
+    from lab.grading.exercise import ExerciseError, load_exercise
 
-    python3 -m pip install "brdf-lab=={version}"
+    names = _exercise_names(source / "exercises", wanted)
+    for name in names:
+        try:
+            exercise = load_exercise(source / "exercises" / name)
+            mistakes.validate(exercise)
+        except ExerciseError as err:
+            raise UsageError(str(err)) from None
+        if not exercise.solution.is_file():
+            raise UsageError(f"{exercise.solution} is missing: the grader renders it live")
+        if not (exercise.references / "values.npz").is_file():
+            raise UsageError(
+                f"{exercise.references} has no references: run brdf-lab exercise check "
+                f"{exercise.folder} first"
+            )
+    skip = shutil.ignore_patterns("__pycache__", "*.pyc", ".*")
+    with tempfile.TemporaryDirectory() as tmp:
+        top = Path(tmp) / "definitions"
+        for name in names:
+            for part in ("exercises", "solutions"):
+                if (source / part / name).is_dir():
+                    shutil.copytree(source / part / name, top / part / name, ignore=skip)
+        with tarfile.open(out, "w:gz") as archive:
+            archive.add(top, "definitions")
+    return names
 
-(in a virtual environment, or with `pipx install brdf-lab=={version}`). Then:
 
-    brdf-lab watch exercises/{first}/{stub}    # live preview, reloads on save
-    brdf-lab grade exercises/{first}             # check your work against the references
-
-## How your work is graded
-
-The grader on GitHub does not read the `exercise.toml` and `references/` in this
-repository: it uses the course's own copy (the archive named in
-`.github/workflows/classroom.yml`, checked against its SHA-256), and it grades in hidden
-mode, with random parameters and lights chosen from your commit. Its log names the seed
-N; to run the same checks at home, unpack that archive into a folder DEFS and run
-
-    brdf-lab grade DEFS/exercises/NN_topic --from exercises --seed N
-
-A file that passes with the references but fails with a seed has a mistake that only
-shows for other parameter values.
-
-Exercises: {names}.
-"""
+def unpack_definitions(data: bytes, into: Path) -> Path:
+    """The archive's top folder, unpacked into `into` (safe paths only)."""
+    try:
+        with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as archive:
+            if hasattr(tarfile, "data_filter"):  # Python 3.10.12+, 3.11.4+
+                archive.extractall(into, filter="data")
+            else:  # pragma: no cover - older: refuse what the data filter would
+                for member in archive.getmembers():
+                    if member.name.startswith(("/", "..")) or ".." in Path(member.name).parts:
+                        raise UsageError(f"the definitions archive holds {member.name!r}")
+                    if not (member.isfile() or member.isdir()):
+                        raise UsageError(f"the definitions archive holds a link {member.name!r}")
+                archive.extractall(into)
+    except (tarfile.TarError, OSError, EOFError) as err:
+        raise UsageError(f"the definitions archive is not a .tar.gz file: {err}") from None
+    tops = [p for p in into.iterdir() if p.is_dir()]
+    if len(tops) != 1:
+        raise UsageError("the definitions archive must hold one top folder (tar of a folder)")
+    return tops[0]
 
 
 def _exercise_names(source: Path, wanted: list[str] | None) -> list[str]:
     """Folder names of the chosen exercises: all, or each matching a name or its NN prefix."""
     from lab.grading.exercise import ExerciseError, find_exercises
+    from lab.grading.installed import matches
 
     try:
-        available = [e.name for e in find_exercises(source)]
+        available = [e.folder for e in find_exercises(source)]
     except (ExerciseError, OSError) as err:
         raise UsageError(f"{source}: {err}") from None
     if not wanted:
-        return available
+        return [f.name for f in available]
     chosen = []
     for want in wanted:
-        hits = [n for n in available if n == want or n.split("_")[0] == want]
+        hits = matches(want, available)
         if len(hits) != 1:
-            raise UsageError(
-                f"--exercises {want!r} names no exercise in {source}: one of {', '.join(available)}"
-            )
-        chosen.append(hits[0])
+            names = ", ".join(f.name for f in available)
+            raise UsageError(f"--exercises {want!r} names no exercise in {source}: one of {names}")
+        chosen.append(hits[0].name)
     return chosen
 
 
-def fetch(source: str) -> tuple[str, bytes]:
-    """(URL for the workflow, bytes) of a definitions archive given as a URL or a path."""
-    import urllib.error
-    import urllib.request
-
-    if "://" not in source:
-        path = Path(source).resolve()
-        if not path.is_file():
-            raise UsageError(f"--definitions {source}: no such file")
-        return path.as_uri(), path.read_bytes()
-    try:
-        with urllib.request.urlopen(source, timeout=60) as answer:
-            return source, answer.read()
-    except (urllib.error.URLError, OSError, ValueError) as err:
-        raise UsageError(
-            f"cannot download the definitions {source} ({err}): pass --definitions with the "
-            "URL or path of an archive (.tar.gz) holding exercises/ and solutions/"
-        ) from None
-
-
-def archive_members(data: bytes) -> set[str]:
-    """Paths inside a .tar.gz archive below its one top folder (tar --strip-components=1)."""
-    import tarfile
-
-    try:
-        with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as archive:
-            names = archive.getnames()
-    except (tarfile.TarError, OSError, EOFError) as err:
-        raise UsageError(f"the definitions archive is not a .tar.gz file: {err}") from None
-    return {n.split("/", 1)[1] for n in names if "/" in n}
-
-
+# -- course init --------------------------------------------------------------------------------
 def init(
     target: Path,
     exercises: list[str] | None = None,
     definitions: str | None = None,
-    source: Path | None = None,
     title: str = "BRDF lab",
     published_url: str | None = None,
+    install: str | None = None,
+    secret: str = sources.TOKEN_SECRET,
 ) -> list[str]:
     """Write the template repository into `target`; returns the exercise names."""
     from lab.grading.exercise import load_exercise
 
-    source = source or data_dir("exercises")
-    names = _exercise_names(source, exercises)
     if target.exists() and any(target.iterdir()):
         raise UsageError(f"{target} is not empty: give a new or empty folder")
-    url, data = fetch(definitions or PYPI_SDIST.format(v=__version__))
-    url = published_url or url
-    members = archive_members(data)
-    for name in names:
-        exercise = load_exercise(source / name)
-        for needed in (
-            f"exercises/{name}/exercise.toml",
-            f"solutions/{name}/{exercise.student_file}",
-        ):
-            if needed not in members:
-                raise UsageError(
-                    f"the definitions archive {url} lacks {needed}: the workflow grades from it"
-                )
-    for name in names:
-        shutil.copytree(
-            source / name, target / "exercises" / name, ignore=shutil.ignore_patterns("__pycache__")
+    if not definitions:
+        raise UsageError(
+            "course init needs the course's definitions (--definitions FILE|URL): a .tar.gz "
+            "of exercises/ and solutions/, made with 'brdf-lab course pack definitions.tar.gz "
+            f"--from DIR', kept private ({HOW})"
         )
+    if not re.fullmatch(r"[A-Z_][A-Z0-9_]*", secret):
+        raise UsageError(f"--token-secret {secret!r}: a secret's name is A-Z, 0-9 and _")
+    line = sources.install_line(install)
+    url, data = sources.fetch(definitions, os.environ.get(sources.TOKEN_SECRET))
+    url = published_url or url
+    with tempfile.TemporaryDirectory() as tmp:
+        top = unpack_definitions(data, Path(tmp))
+        if not (top / "exercises").is_dir():
+            raise UsageError(
+                f"the definitions archive {url} has no exercises/ in its top folder "
+                f"{top.name}/: make it with 'brdf-lab course pack'"
+            )
+        names = _exercise_names(top / "exercises", exercises)
+        for name in names:
+            exercise = load_exercise(top / "exercises" / name)
+            if not exercise.solution.is_file():
+                raise UsageError(
+                    f"the definitions archive {url} lacks solutions/{name}/"
+                    f"{exercise.student_file}: the workflow grades with it"
+                )
+            shutil.copytree(
+                top / "exercises" / name,
+                target / "exercises" / name,
+                ignore=shutil.ignore_patterns("__pycache__"),
+            )
+        first = load_exercise(target / "exercises" / names[0])
     workflow = (TEMPLATES / "classroom.yml").read_text(encoding="utf-8")
     for key, value in {
-        "__LAB_VERSION__": __version__,
+        "__INSTALL__": line,
         "__DEFINITIONS_URL__": url,
         "__DEFINITIONS_SHA256__": hashlib.sha256(data).hexdigest(),
         "__EXERCISES__": " ".join(names),
+        "__TOKEN_SECRET__": secret,
     }.items():
         workflow = workflow.replace(key, value)
     (target / WORKFLOW).parent.mkdir(parents=True, exist_ok=True)
     (target / WORKFLOW).write_text(workflow, encoding="utf-8")
-    first = load_exercise(source / names[0])
+    readme = (TEMPLATES / "student_README.md").read_text(encoding="utf-8")
     (target / "README.md").write_text(
-        README.format(
+        readme.format(
             title=title,
-            version=__version__,
+            install=line,
             first=first.name,
             stub=first.student_file,
             names=", ".join(names),
@@ -177,59 +188,139 @@ def init(
 
 
 def workflow_settings(text: str) -> dict[str, str]:
-    """The workflow's env: pins (BRDF_LAB_VERSION, DEFINITIONS_URL, ...)."""
+    """The workflow's env: pins (BRDF_LAB_INSTALL, DEFINITIONS_URL, ...)."""
     return dict(re.findall(r'^  ([A-Z_0-9]+): "([^"]*)"$', text, flags=re.M))
 
 
-def check(target: Path) -> list[str]:
-    """What is missing or wrong in a template repository (empty: complete)."""
-    from lab.grading.exercise import ExerciseError, load_exercise
+def secret_name(text: str) -> str:
+    found = re.search(r"DEFINITIONS_TOKEN: \$\{\{ secrets\.([A-Za-z0-9_]+) \}\}", text)
+    return found.group(1) if found else ""
 
-    problems = []
+
+# -- course check -------------------------------------------------------------------------------
+def check(target: Path, offline: bool = False) -> tuple[list[str], list[str]]:
+    """(problems, notes) of a template repository: problems fail the check."""
+    problems: list[str] = []
+    notes: list[str] = []
     for needed in ("README.md", ".gitignore", str(WORKFLOW)):
         if not (target / needed).is_file():
             problems.append(f"{needed} is missing ('brdf-lab course init' writes it)")
-    if (target / "solutions").exists():
-        problems.append("solutions/ is in the repository: students would see it; remove it")
     if (target / ".gitignore").is_file():
         ignored = (target / ".gitignore").read_text(encoding="utf-8").split()
         problems += [f".gitignore does not ignore {o}" for o in OUTPUTS if o not in ignored]
     if not (target / WORKFLOW).is_file():
-        return problems
+        return problems + _leaks(target, [], None), notes
     text = (target / WORKFLOW).read_text(encoding="utf-8")
     env = workflow_settings(text)
     if re.search(r"__[A-Z0-9_]+__", text):
         problems.append(f"{WORKFLOW} still has template placeholders")
-    if not re.fullmatch(r"\d+(\.\d+)*([a-z]+\d*)?", env.get("BRDF_LAB_VERSION", "")):
-        problems.append(f"{WORKFLOW}: BRDF_LAB_VERSION does not pin a release")
-    if not re.fullmatch(r"[0-9a-f]{64}", env.get("DEFINITIONS_SHA256", "")):
-        problems.append(f"{WORKFLOW}: DEFINITIONS_SHA256 is not a SHA-256 checksum")
-    if not env.get("DEFINITIONS_URL", "").startswith(("https://", "http://")):
-        problems.append(
-            f"{WORKFLOW}: DEFINITIONS_URL {env.get('DEFINITIONS_URL')!r} is not a web address "
-            "GitHub's runners can download: publish the archive (e.g. as a release asset) "
-            "and give its address with --definitions-url"
-        )
+    problems += _install_problems(env.get("BRDF_LAB_INSTALL", ""), offline, notes)
+    data = _definitions_problems(env, text, offline, problems, notes)
     if "sha256sum -c" not in text or '--seed "$seed"' not in text:
         problems.append(f"{WORKFLOW} does not check the definitions or grade in hidden mode")
     names = env.get("EXERCISES", "").split()
     if not names:
         problems.append(f"{WORKFLOW}: EXERCISES lists no exercise")
-    clone_solutions = data_dir("exercises").parent / "solutions"
-    for name in names:
-        folder = target / "exercises" / name
-        try:
-            exercise = load_exercise(folder)
-        except (ExerciseError, OSError) as err:
-            problems.append(f"exercises/{name}: {err}")
-            continue
-        for needed in ("README.md", exercise.student_file):
-            if not (folder / needed).is_file():
-                problems.append(f"exercises/{name}/{needed} is missing")
-        solved = clone_solutions / name / exercise.student_file
-        stub = folder / exercise.student_file
-        if solved.is_file() and stub.is_file() and solved.read_bytes() == stub.read_bytes():
-            problems.append(f"exercises/{name}/{exercise.student_file} is the solution")
+    readme = (target / "README.md").read_text("utf-8") if (target / "README.md").is_file() else ""
+    url = env.get("DEFINITIONS_URL", "")
+    if url and url in readme or re.search(r"(download|unpack)[^.]*definitions", readme, re.I):
+        problems.append("README.md tells students where the definitions (solutions) are")
+    problems += _leaks(target, names, data)
+    return problems, notes
+
+
+def _install_problems(line: str, offline: bool, notes: list[str]) -> list[str]:
+    where = f"{WORKFLOW}: BRDF_LAB_INSTALL"
+    if not line:
+        return [f"{where} is missing: rerun course init with --install"]
+    if sources.placeholder(line):
+        return [f"{where} '{line}' has a placeholder ({sources.placeholder(line)})"]
+    try:
+        if sources.install_line(line) != line:
+            raise UsageError("")
+    except UsageError:
+        return [f"{where} '{line}' pins no release: give a version, a wheel URL or git URL@tag"]
+    if offline:
+        notes.append(f"not checked (--offline): that '{line}' installs")
+        return []
+    problem = sources.install_problem(line)
+    return [f"{where}: {problem}"] if problem else []
+
+
+def _definitions_problems(env: dict, text: str, offline: bool, problems, notes) -> bytes | None:
+    """Problems with the definitions' address, privacy and checksum; their bytes if read."""
+    url = env.get("DEFINITIONS_URL", "")
+    sha = env.get("DEFINITIONS_SHA256", "")
+    if not re.fullmatch(r"[0-9a-f]{64}", sha):
+        problems.append(f"{WORKFLOW}: DEFINITIONS_SHA256 is not a SHA-256 checksum")
+    if not secret_name(text):
+        problems.append(f"{WORKFLOW}: the download reads no token from an Actions secret")
+    local = re.match(r"http://(127\.0\.0\.1|localhost)[:/]", url)  # a test's own server
+    if sources.placeholder(url):
+        problems.append(f"{WORKFLOW}: DEFINITIONS_URL {url!r} has a placeholder")
+        return None
+    if not (url.startswith("https://") or local):
+        problems.append(
+            f"{WORKFLOW}: DEFINITIONS_URL {url!r} is not a web address GitHub's runners can "
+            f"download: publish the archive privately and give its address ({HOW})"
+        )
+        return None
+    if offline:
+        notes.append("not checked (--offline): that the definitions download, and are private")
+        return None
+    if sources.readable_without_token(url):
+        problems.append(
+            f"anyone can download {url}, solutions included: publish the definitions "
+            f"privately and let the workflow read them with a token ({HOW})"
+        )
+    token = os.environ.get(sources.TOKEN_SECRET)
+    if not token:
+        problems.append(
+            f"cannot check that the workflow can download {url}: set {sources.TOKEN_SECRET} "
+            "to the token the Actions secret holds and run again (or pass --offline)"
+        )
+        return None
+    try:
+        _, data = sources.fetch(url, token)
+    except UsageError as err:
+        problems.append(str(err))
+        return None
+    if hashlib.sha256(data).hexdigest() != sha:
+        problems.append(f"{url} is not the archive DEFINITIONS_SHA256 pins: rerun course init")
+    return data
+
+
+def _leaks(target: Path, names: list[str], data: bytes | None) -> list[str]:
+    """Anything in the repository that hands students a solution or leaves an exercise
+    ungraded (compared with the definitions' solutions where they were read)."""
+    from lab.grading.exercise import ExerciseError, load_exercise
+
+    problems = []
+    if (target / "solutions").exists():
+        problems.append("solutions/ is in the repository: students would see it; remove it")
+    with tempfile.TemporaryDirectory() as tmp:
+        solutions = data_dir("exercises").parent / "solutions"
+        if data is not None:
+            try:
+                solutions = unpack_definitions(data, Path(tmp)) / "solutions"
+            except UsageError as err:
+                problems.append(str(err))
+        solved = (
+            {p.read_bytes() for p in solutions.glob("*/*.glsl")} if solutions.is_dir() else set()
+        )
+        for path in sorted(target.rglob("*.glsl")):
+            if path.read_bytes() in solved:
+                problems.append(f"{path.relative_to(target)} is a solution: remove it")
+        for name in names:
+            folder = target / "exercises" / name
+            try:
+                exercise = load_exercise(folder)
+            except (ExerciseError, OSError) as err:
+                problems.append(f"exercises/{name}: {err}")
+                continue
+            for needed in ("README.md", exercise.student_file):
+                if not (folder / needed).is_file():
+                    problems.append(f"exercises/{name}/{needed} is missing")
     if (target / "exercises").is_dir():
         extra = sorted(p.name for p in (target / "exercises").iterdir() if p.name not in names)
         problems += [
@@ -238,20 +329,37 @@ def check(target: Path) -> list[str]:
     return problems
 
 
+# -- the command line ---------------------------------------------------------------------------
 def cmd_course(args) -> int:
     target = Path(args.dir)
+    if args.action == "pack":
+        source = Path(args.source) if args.source else data_dir("exercises").parent
+        names = pack(target, source, args.exercises)
+        print(f"wrote {target} ({len(names)} exercises with solutions: {' '.join(names)})")
+        print(f"keep it private: a release asset of a private repository ({HOW})")
+        return 0
     if args.action == "init":
         names = init(
-            target, args.exercises, args.definitions, title=args.title, published_url=args.url
+            target,
+            args.exercises,
+            args.definitions,
+            title=args.title,
+            published_url=args.url,
+            install=args.install,
+            secret=args.token_secret,
         )
         print(f"wrote the template repository {target} ({len(names)} exercises: {' '.join(names)})")
-        print("push it to GitHub, mark it as a template and use it in a Classroom assignment")
+        print("check it with 'brdf-lab course check DIR', push it to GitHub, mark it as a")
+        print(f"template and use it in a Classroom assignment; the workflow reads the secret "
+              f"{args.token_secret} ({HOW})")  # fmt: skip
         return 0
     if not target.is_dir():
         raise UsageError(f"{target}: no such folder")
-    problems = check(target)
+    problems, notes = check(target, args.offline)
     for problem in problems:
         print(f"{target}: {problem}")
+    for note in notes:
+        print(f"{target}: note: {note}")
     if not problems:
         print(f"{target}: complete")
     return 1 if problems else 0
@@ -260,6 +368,13 @@ def cmd_course(args) -> int:
 def register(subparsers) -> None:
     p = subparsers.add_parser("course", help="a GitHub Classroom template repository")
     actions = p.add_subparsers(dest="action", metavar="ACTION", required=True)
+    pack_parser = actions.add_parser("pack", help="the private definitions archive of a course")
+    pack_parser.add_argument("dir", metavar="OUT.tar.gz")
+    pack_parser.add_argument(
+        "--from", dest="source", metavar="DIR", help="folder with exercises/ and solutions/"
+    )
+    pack_parser.add_argument("--exercises", nargs="+", metavar="NN", help="default: all")
+    pack_parser.set_defaults(func=cmd_course)
     init_parser = actions.add_parser("init", help="write a template repository for students")
     init_parser.add_argument("dir", metavar="DIR")
     init_parser.add_argument(
@@ -268,16 +383,31 @@ def register(subparsers) -> None:
     init_parser.add_argument(
         "--definitions",
         metavar="URL|FILE.tar.gz",
-        help="the pinned archive the workflow grades with (default: this release's sdist on PyPI)",
+        help="the private archive the workflow grades with ('course pack' makes it); a URL is "
+        f"read with the token in ${sources.TOKEN_SECRET}",
     )
     init_parser.add_argument(
         "--definitions-url",
         dest="url",
         metavar="URL",
-        help="where the workflow downloads the --definitions FILE from (its published copy)",
+        help="where the workflow downloads the --definitions FILE from (its private copy)",
+    )
+    init_parser.add_argument(
+        "--install",
+        metavar="VERSION|WHEEL_URL|GIT_URL@TAG",
+        help=f"how the workflow installs the grader (default: {sources.default_install()})",
+    )
+    init_parser.add_argument(
+        "--token-secret",
+        default=sources.TOKEN_SECRET,
+        metavar="NAME",
+        help=f"the Actions secret holding the token (default {sources.TOKEN_SECRET})",
     )
     init_parser.add_argument("--title", default="BRDF lab", help="the README's title")
     init_parser.set_defaults(func=cmd_course)
     check_parser = actions.add_parser("check", help="verify that a template repository is complete")
     check_parser.add_argument("dir", metavar="DIR")
+    check_parser.add_argument(
+        "--offline", action="store_true", help="skip downloading the install and the definitions"
+    )
     check_parser.set_defaults(func=cmd_course)

@@ -18,7 +18,7 @@ from pathlib import Path
 
 from lab.errors import UsageError
 from lab.grading.exercise import Exercise
-from lab.resources import package_dir
+from lab.resources import install_line, package_dir
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 REQUIREMENTS = package_dir() / "requirements-core.txt"
@@ -38,7 +38,7 @@ def build_wheel(outdir: Path) -> Path:
     if root is None:
         raise UsageError(
             "this brdf-lab is an installed wheel, not a clone: pass the wheel with "
-            "--wheel FILE.whl (e.g. from 'pip download --no-deps brdf-lab')"
+            f'--wheel FILE.whl (the release\'s wheel, or: pip wheel --no-deps "{install_line()}")'
         )
     command = [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(outdir)]
     try:
