@@ -48,7 +48,10 @@ TEST_PACKAGES = {
     "chromium": "chromium",
     "nodejs": "node",
     "npm": "npm",
+    "golang-go": "go",  # builds actionlint, which checks the Classroom workflow
 }
+# The Go module of the workflow linter the course tests run (built into .venv/bin).
+ACTIONLINT = "github.com/rhysd/actionlint/cmd/actionlint@v1.7.12"
 
 
 def say(message: str) -> None:
@@ -108,10 +111,27 @@ def ensure_venv(with_tests: bool) -> None:
     STAMP.write_text(digest + (" test" if with_tests else ""))
 
 
+def ensure_actionlint() -> None:
+    """actionlint in .venv/bin, built with Go from the module proxy (once)."""
+    if (VENV_BIN / "actionlint").exists():
+        return
+    go = shutil.which("go") or (
+        "/usr/local/go/bin/go" if Path("/usr/local/go/bin/go").exists() else None
+    )
+    if go is None:
+        say("Go is missing: the Classroom workflow's actionlint test cannot run")
+        return
+    say(f"building actionlint into {VENV_BIN} (first run only)")
+    env = {**os.environ, "GOBIN": str(VENV_BIN)}
+    subprocess.run([go, "install", ACTIONLINT], check=False, env=env)
+
+
 def main(argv: list[str]) -> int:
     testing = bool(argv) and argv[0] == "test"
     ensure_system_packages({**RUN_PACKAGES, **(TEST_PACKAGES if testing else {})})
     ensure_venv(with_tests=testing)
+    if testing:
+        ensure_actionlint()
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     if testing:
         env["BRDF_LAB_STRICT"] = "1"  # a skipped test would hide a missing install
