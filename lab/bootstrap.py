@@ -49,6 +49,7 @@ TEST_PACKAGES = {
     "nodejs": "node",
     "npm": "npm",
     "golang-go": "go",  # builds actionlint, which checks the Classroom workflow
+    "shellcheck": "shellcheck",  # actionlint checks the workflows' scripts with it
 }
 # The Go module of the workflow linter the course tests run (built into .venv/bin).
 ACTIONLINT = "github.com/rhysd/actionlint/cmd/actionlint@v1.7.12"
