@@ -9,6 +9,7 @@ from __future__ import annotations
 import csv
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -284,3 +285,18 @@ def test_commands_that_need_the_solutions_say_so_in_an_install(installed):
         result = run(script, *args, cwd=work)
         assert result.returncode == 2, (args, result.stderr)
         assert "internal error" not in result.stderr and "solution" in result.stderr, args
+
+
+def test_every_command_the_readme_names_exists_in_the_install(installed):
+    """Each `brdf-lab COMMAND [ACTION]` of the README is a command of the installed lab
+    (its --help answers), so the README cannot name a command the install lacks."""
+    script, _, work = installed
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    found = set(
+        re.findall(r"brdf-lab ([a-z][a-z-]+)(?: (pack|init|check|list|copy|pdf|build))?", readme)
+    )
+    found = {tuple(w for w in pair if w) for pair in found if pair[0] != "is"}
+    assert {("grade",), ("exercises", "copy"), ("course", "pack"), ("exercise", "check")} <= found
+    for words in sorted(found):
+        done = run(script, *words, "--help", cwd=work)
+        assert done.returncode == 0 and "usage: brdf-lab" in done.stdout, (words, done.stderr)
