@@ -3,8 +3,9 @@
     python -m lab.grading.install_bench [--keep DIR]
 
 Builds the wheel from this clone, then times three installs into fresh venvs with pip
-(from the package index, no cache): the lean set (requirements-core.txt, then the
-wheel with --no-deps, as Gradescope's setup.sh does), the whole lab from the wheel, and
+(from the package index, no cache): the lean set (requirements-core.txt at the pinned
+versions of constraints-core.txt, then the wheel with --no-deps, as Gradescope's setup.sh
+does), the whole lab from the wheel, and
 the editable install of the source tree that the Gradescope set-up used before.
 Prints seconds and MiB for each. Needs the network.
 """
@@ -45,8 +46,8 @@ def run(keep: Path | None = None) -> None:
         wheel = build_wheel(base / "dist")
         core = package_dir() / "requirements-core.txt"
         cases = {
-            "lean (requirements-core.txt + wheel --no-deps)": [
-                ["-r", str(core)],
+            "lean (requirements-core.txt pinned + wheel --no-deps)": [
+                ["-r", str(core), "-c", str(package_dir() / "constraints-core.txt")],
                 ["--no-deps", str(wheel)],
             ],
             "whole lab (pip install of the wheel)": [[str(wheel)]],
