@@ -156,14 +156,13 @@ def seed_needs(exercise) -> str:
 
     shipped = exercise.folder.resolve().parent == data_dir("exercises").resolve()
     return (
-        f"--seed (hidden mode) renders the solution live with random parameters, and "
-        f"{exercise.solution} is not there. An install of brdf-lab carries no solutions "
-        "(students must not read them); they come with a clone, the sdist or your course's "
-        "definitions archive, as solutions/NN_topic beside exercises/NN_topic. Instructors: "
-        "brdf-lab grade DEFS/exercises/NN_topic --from STUDENT_DIR --seed N. Students: leave "
-        "out --seed to grade against the committed references: brdf-lab grade "
-        f"{exercise.name if shipped else exercise.folder} "
-        "--submission YOUR_FILE"
+        f"--seed (hidden mode) renders the solutions live, with random parameters, and "
+        f"{exercise.solution} is not there: an install of brdf-lab carries no solutions "
+        "(students must not read them); they come with a clone, the sdist or the course's "
+        "definitions archive, as solutions/NN_topic beside exercises/NN_topic (instructors: "
+        "brdf-lab grade DEFS/exercises/NN_topic --from STUDENT_DIR --seed N). Without --seed "
+        "the grader runs in practice mode against the committed references: brdf-lab grade "
+        f"{exercise.name if shipped else exercise.folder} --submission YOUR_FILE"
     )
 
 
@@ -313,7 +312,12 @@ def cmd_bench(args) -> int:
 
 def register(sub) -> None:
     workers = min(2, os.cpu_count() or 1)
-    p = sub.add_parser("grade", help="grade a student's shader against an exercise")
+    p = sub.add_parser(
+        "grade",
+        help="grade a student's shader against an exercise",
+        epilog="exit status: 0 every check passed, 1 a check failed (a grade: the result "
+        "files are written), 2 usage error (result files carry the reason), 3 internal error",
+    )
     p.add_argument(
         "exercise",
         nargs="+",
@@ -340,7 +344,12 @@ def register(sub) -> None:
     )
     p.set_defaults(func=cmd_grade)
 
-    p = sub.add_parser("grade-all", help="grade a class: one sub-folder per student")
+    p = sub.add_parser(
+        "grade-all",
+        help="grade a class: one sub-folder per student",
+        epilog="exit status: 0 every student has full marks, 1 someone lacks some (the "
+        "gradebook and reports are complete either way), 2 usage error",
+    )
     p.add_argument("submissions", metavar="SUBMISSIONS_DIR")
     p.add_argument("--exercises", nargs="+", default=["exercises"], metavar="DIR")
     p.add_argument("--out", default="grades", help="folder for gradebook.csv and reports/")

@@ -34,7 +34,7 @@ __pycache__/
 out/
 .DS_Store
 """
-HOW = "see 'Teaching with it: GitHub Classroom' in brdf-lab's README"
+HOW = "see the steps under 'GitHub Classroom' in brdf-lab's README"
 
 
 # -- the definitions archive -----------------------------------------------------------------
