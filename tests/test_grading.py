@@ -229,7 +229,7 @@ def test_an_upload_inside_its_own_folder_is_found_but_never_guessed(tmp_path):
 
 def test_classroom_workflow_template_runs_the_grader_and_reporter():
     text = (ROOT / "lab" / "grading" / "templates" / "classroom.yml").read_text()
-    assert "brdf-lab grade $folders --from exercises --seed" in text
+    assert 'brdf-lab grade "${folders[@]}" --from exercises --seed' in text
     assert "classroom-resources/autograding-grading-reporter@v1" in text
     assert "BRDF-LAB_RESULTS" in text and "steps.brdf-lab.outputs.result" in text
 

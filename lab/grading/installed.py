@@ -53,7 +53,8 @@ def resolve(argument: str) -> Path:
             f"{argument!r} names several exercises ({', '.join(h.name for h in hits)})"
         )
     raise UsageError(
-        f"{argument}: no such folder, and no installed exercise is called that; give a folder, "
+        f"{argument}: no such folder (so no exercise.toml), and no installed exercise is "
+        f"called {path.name!r}; give an exercise folder, "
         f"or one of {names} (by number or topic: 02, phong); 'brdf-lab exercises list' shows them"
     )
 
