@@ -84,6 +84,8 @@ BROKEN_EXERCISE = [
     ("ke = 50.0 }", "ke = [1, 2, 3] }", "ke = [1, 2, 3]", ["params.ke", "a number"]),
     ('title = "', 'titel = "', "titel", ["'titel'", "did you mean 'title'"]),
     ('name = "probe.broad"', 'name = "probe.sharp"', 'name = "probe.sharp"', ["two checks"]),
+    ('vec3 Y)"]', 'vec3 Y"]', "functions", ["not a GLSL signature"]),
+    ('student_file = "phong.glsl"', 'student_file = "../phong.glsl"', "student_file", [".glsl"]),
 ]
 
 

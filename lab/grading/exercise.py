@@ -151,6 +151,7 @@ def load_exercise(folder: str | Path) -> Exercise:
             f"{where}:{lines.line('', 0, 'loop_limit')}: loop_limit must be a positive number "
             "of iterations"
         )
+    _check_files(exercise, where, lines)
     _check_params(exercise, spec, where, lines)
     wrapper = exercise.wrapper or exercise.sampler_for  # the value kinds' conditioning:
     exercise.checks = with_reference(exercise.checks, exercise.model_name, exercise.stub, wrapper)
@@ -163,6 +164,22 @@ def load_exercise(folder: str | Path) -> Exercise:
             )
         seen[check.name] = lines.line("checks", index, "name")
     return exercise
+
+
+def _check_files(exercise: Exercise, where: str, lines) -> None:
+    """student_file is a .glsl name in the folder; each of `functions` a GLSL signature."""
+    name = exercise.student_file
+    if Path(name).name != name or not name.endswith(".glsl"):
+        raise ExerciseError(
+            f"{where}:{lines.line('', 0, 'student_file')}: student_file = {name!r} should be "
+            'the name of a .glsl file in the exercise folder, e.g. "phong.glsl"'
+        )
+    for signature in exercise.functions:
+        if not _SIGNATURE.fullmatch(signature.strip() + " {"):
+            raise ExerciseError(
+                f"{where}:{lines.line('', 0, 'functions')}: functions: {signature!r} is not a "
+                'GLSL signature; write e.g. "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"'
+            )
 
 
 def header_params(exercise: Exercise) -> dict[str, Param] | None:
@@ -191,6 +208,13 @@ def _check_params(exercise: Exercise, spec: dict, where: str, lines) -> None:
             raise ExerciseError(
                 f"{where}:{lines.line('', 0, key)}: {key} = {library!r}: {err}"
             ) from None
+    if exercise.wrapper and exercise.replaces:
+        includes = load_model(exercise.wrapper).includes
+        if exercise.replaces not in includes:
+            raise ExerciseError(
+                f"{where}:{lines.line('', 0, 'replaces')}: replaces = {exercise.replaces!r} is "
+                f"not a file the wrapper {exercise.wrapper} includes ({', '.join(includes)})"
+            )
     header = header_params(exercise)
     if header is None:
         return
