@@ -220,7 +220,8 @@ def _check_params(exercise: Exercise, spec: dict, where: str, lines) -> None:
         return
     for index, check in enumerate(exercise.checks):
         raw = spec["checks"][index]
-        for key, names in (("params", check.params), ("ranges", check.ranges)):
+        groups = sum(check.same, ())
+        for key, names in (("params", check.params), ("ranges", check.ranges), ("same", groups)):
             line = lines.line(*(("checks", index) if key in raw else ("defaults", 0)), key)
             schema.check_param_names(names, header, where, line, f"check {check.name}: {key}")
         line = lines.line(*(("checks", index) if "ranges" in raw else ("defaults", 0)), "ranges")

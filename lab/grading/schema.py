@@ -69,6 +69,16 @@ TYPES: dict[str, tuple[Any, str]] = {
         ),
         'a name or a list of names, one per light, e.g. ["highlight"]',
     ),
+    "same": (
+        lambda v: (
+            isinstance(v, list)
+            and (
+                all(isinstance(x, str) for x in v)
+                or all(isinstance(g, list) and all(isinstance(x, str) for x in g) for g in v)
+            )
+        ),
+        'a list of parameter groups, e.g. [["alpha_x", "alpha_y"]]',
+    ),
     "views": (
         lambda v: isinstance(v, list) and all(_numbers(x, 2) for x in v),
         "a list of [theta, phi] in degrees, e.g. [[10.0, 0.0], [70.0, 130.0]]",
@@ -123,6 +133,7 @@ CHECK: tuple[Key, ...] = (
     Key("params", "params", {}, "header parameters set for the check; others keep defaults"),
     Key("ranges", "ranges", {}, "hidden mode draws these parameters within [low, high]"),
     Key("purpose", "purpose", None, "what each light is for; hidden mode draws within it"),
+    Key("same", "same", [], "parameter groups hidden mode draws one value for (isotropy)"),
     Key("pairs", "integer", 256, "random direction pairs (plus 18 special ones)", ("probe",)),
     Key(
         "seed",
