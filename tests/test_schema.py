@@ -85,6 +85,7 @@ BROKEN_EXERCISE = [
     ('title = "', 'titel = "', "titel", ["'titel'", "did you mean 'title'"]),
     ('name = "probe.broad"', 'name = "probe.sharp"', 'name = "probe.sharp"', ["two checks"]),
     ('vec3 Y)"]', 'vec3 Y"]', "functions", ["not a GLSL signature"]),
+    ("seed = 201", 'seed = 201\nsame = [["kd", "kdd"]]', "same = ", ["same names 'kdd'"]),
     ('student_file = "phong.glsl"', 'student_file = "../phong.glsl"', "student_file", [".glsl"]),
 ]
 
