@@ -273,6 +273,9 @@ def test_exercises_from_the_install_by_number_and_name(installed, tmp_path):
         graded = run(script, "grade", name, "--submission", str(solution), cwd=work)
         assert ok(graded).splitlines()[-1] == "total 10/10", name
     assert ok(run(script, "grade", str(mine / "02_phong"), cwd=work)).endswith("total 10/10\n")
+    # in the working folder, `grade 02` grades the student's copy, not the install's stub
+    assert ok(run(script, "grade", "02", cwd=mine)).endswith("total 10/10\n")
+    assert run(script, "grade", "03", cwd=mine).stdout.endswith("total 0/10\n")
     stub = run(script, "grade", "phong", cwd=work)
     assert stub.returncode == 1 and stub.stdout.splitlines()[-1] == "total 0/10"
     unknown = run(script, "grade", "phongg", cwd=work)

@@ -35,14 +35,21 @@ def matches(name: str, folders: list[Path]) -> list[Path]:
 
 
 def resolve(argument: str) -> Path:
-    """An exercise folder from what a user typed: an existing path as it is, else one of
-    the installed exercises by name, number or topic (also `exercises/02_phong`, the
-    README's form, outside a clone)."""
+    """An exercise folder from what a user typed: an existing path as it is, else a folder
+    of the working directory (or its exercises/) by name, number or topic, else one of the
+    installed exercises so named (also `exercises/02_phong`, the README's form, outside a
+    clone)."""
     path = Path(argument)
     if path.exists():
         return path
     if path.name == "exercises":  # the folder of them all, as in a clone
         return require_dir(data_dir("exercises"), "the exercises folder")
+    # A student's working copy first (exercises copy NN .): `grade 02` in that folder
+    # grades their file, not the untouched one of the install.
+    here = [p.parent for top in (Path("."), Path("exercises")) for p in top.glob("*/exercise.toml")]
+    local = matches(path.name, sorted(here)) if path.name and len(path.parts) == 1 else []
+    if len(local) == 1:
+        return local[0]
     folders = installed()
     hits = matches(path.name, folders) if path.name else []
     if len(hits) == 1:
