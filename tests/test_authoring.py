@@ -67,13 +67,16 @@ def test_the_guides_exercise_passes_exercise_check(exercise):
     }
 
 
-def test_a_mistake_no_check_sees_is_reported(exercise):
-    """A stored mistake that changes nothing is WRONG in the table, with what to do."""
+def test_a_mistake_no_check_sees_or_that_does_not_compile_is_reported(exercise):
+    """A stored mistake that changes nothing, and one that does not compile, are WRONG in
+    the table, each with what to do."""
     path = exercise.parent.parent / "solutions" / "11_oren_nayar" / "mistakes.toml"
     text = path.read_text(encoding="utf-8")
     path.write_text(
         text + "\n[[mistake]]\nedits = [['float s2 = sigma * sigma;', 'float s2 = sigma*sigma;']]"
-        '\nhint = "no difference at all"\n',
+        '\nhint = "no difference at all"\n'
+        "\n[[mistake]]\nedits = [['float s2 = sigma * sigma;', 'float s2 = sigma * ;']]"
+        '\nhint = "a syntax error"\n',
         encoding="utf-8",
     )
     try:
@@ -83,3 +86,5 @@ def test_a_mistake_no_check_sees_is_reported(exercise):
     assert done.returncode == 1, done.stdout + done.stderr
     assert rows(done.stdout)["mistake 4"][3] == "WRONG"
     assert "mistake 4 passes every check" in done.stdout
+    assert rows(done.stdout)["mistake 5"][3] == "WRONG"
+    assert re.search(r"mistake 5 does not compile \(\S+oren_nayar.glsl:\d+: ", done.stdout)

@@ -27,8 +27,13 @@ class Row:
     hint: str = ""  # a mistake's hint: is it the one the grader gives?
 
     @property
+    def compile_error(self) -> str:
+        """The first compile error of this file ('' when it compiles)."""
+        return next((r.errors[0] for r in self.task.checks() if r.errors), "")
+
+    @property
     def ok(self) -> bool:
-        return self.task.passed == self.expect_pass
+        return self.task.passed == self.expect_pass and not self.compile_error
 
     def named(self) -> str:
         if not self.hint:
@@ -99,7 +104,12 @@ def problems(rows: list[Row]) -> list[str]:
     for row in rows:
         if row.ok:
             continue
-        if row.expect_pass:
+        if row.compile_error:
+            out.append(
+                f"{row.what} does not compile ({row.compile_error}): every file students "
+                "start from or could be told about must compile; fix its edits"
+            )
+        elif row.expect_pass:
             failing = [r for r in row.task.checks() if not r.passed]
             first = failing[0] if failing else None
             why = f"{first.name}: {first.message}" if first else "no result"
