@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 import subprocess
 import urllib.error
+import urllib.parse
 import urllib.request
 from pathlib import Path
 
@@ -63,13 +64,25 @@ def placeholder(text: str) -> str:
     return found.group(0) if found else ""
 
 
+class _KeepTokenHome(urllib.request.HTTPRedirectHandler):
+    """Redirects without the token to another host: GitHub sends a private release asset
+    from a signed storage URL, which refuses a second credential (curl -L does the same)."""
+
+    def redirect_request(self, req, fp, code, msg, headers, newurl):
+        new = super().redirect_request(req, fp, code, msg, headers, newurl)
+        here, there = urllib.parse.urlsplit(req.full_url), urllib.parse.urlsplit(newurl)
+        if new is not None and here.netloc != there.netloc:
+            new.remove_header("Authorization")
+        return new
+
+
 def _open(url: str, token: str | None = None, method: str = "GET"):
     headers = {"User-Agent": "brdf-lab"}
     if token:
         headers["Authorization"] = f"Bearer {token}"
         headers["Accept"] = "application/octet-stream"  # a release asset's bytes, not JSON
     request = urllib.request.Request(url, headers=headers, method=method)
-    return urllib.request.urlopen(request, timeout=60)
+    return urllib.request.build_opener(_KeepTokenHome).open(request, timeout=60)
 
 
 def fetch(source: str, token: str | None = None) -> tuple[str, bytes]:
