@@ -116,14 +116,14 @@ def ensure_actionlint() -> None:
     """actionlint in .venv/bin, built with Go from the module proxy (once)."""
     if (VENV_BIN / "actionlint").exists():
         return
-    go = shutil.which("go") or (
-        "/usr/local/go/bin/go" if Path("/usr/local/go/bin/go").exists() else None
-    )
+    # A Go from go.dev (/usr/local/go) before the distribution's, which may be too old.
+    local = Path("/usr/local/go/bin/go")
+    go = str(local) if local.exists() else shutil.which("go")
     if go is None:
         say("Go is missing: the Classroom workflow's actionlint test cannot run")
         return
     say(f"building actionlint into {VENV_BIN} (first run only)")
-    env = {**os.environ, "GOBIN": str(VENV_BIN)}
+    env = {**os.environ, "GOBIN": str(VENV_BIN), "GOTOOLCHAIN": "auto"}
     subprocess.run([go, "install", ACTIONLINT], check=False, env=env)
 
 
