@@ -14,7 +14,7 @@ from pathlib import Path
 
 from lab.constants import LOOP_LIMIT
 from lab.glsl import SAMPLER_LINE_BASE, guard_loops, label_of
-from lab.grading import kinds, schema
+from lab.grading import headers, kinds, schema
 from lab.grading.scope import check_names, exercise_names
 from lab.grading.spec import Check, ExerciseError, with_reference  # noqa: F401
 from lab.grading.submission import SourceError, check_directives, linked_part, preprocess
@@ -151,8 +151,8 @@ def load_exercise(folder: str | Path) -> Exercise:
             f"{where}:{lines.line('', 0, 'loop_limit')}: loop_limit must be a positive number "
             "of iterations"
         )
-    _check_files(exercise, where, lines)
-    _check_params(exercise, spec, where, lines)
+    headers.check_files(exercise, where, lines)
+    headers.check_params(exercise, spec, where, lines)
     wrapper = exercise.wrapper or exercise.sampler_for  # the value kinds' conditioning:
     exercise.checks = with_reference(exercise.checks, exercise.model_name, exercise.stub, wrapper)
     seen: dict[str, int] = {}
@@ -164,79 +164,6 @@ def load_exercise(folder: str | Path) -> Exercise:
             )
         seen[check.name] = lines.line("checks", index, "name")
     return exercise
-
-
-def _check_files(exercise: Exercise, where: str, lines) -> None:
-    """student_file is a .glsl name in the folder; each of `functions` a GLSL signature."""
-    name = exercise.student_file
-    if Path(name).name != name or not name.endswith(".glsl"):
-        raise ExerciseError(
-            f"{where}:{lines.line('', 0, 'student_file')}: student_file = {name!r} should be "
-            'the name of a .glsl file in the exercise folder, e.g. "phong.glsl"'
-        )
-    for signature in exercise.functions:
-        if not _SIGNATURE.fullmatch(signature.strip() + " {"):
-            raise ExerciseError(
-                f"{where}:{lines.line('', 0, 'functions')}: functions: {signature!r} is not a "
-                'GLSL signature; write e.g. "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"'
-            )
-
-
-def header_params(exercise: Exercise) -> dict[str, Param] | None:
-    """The parameters a check may set: the wrapper's or sampled model's header, else the
-    stub's (None when it cannot be read: the stub is missing or its header is broken)."""
-    library = exercise.wrapper or exercise.sampler_for
-    for name in (exercise.wrapper, exercise.replaces, exercise.sampler_for):
-        if name is not None and not isinstance(name, str):
-            return None
-    try:
-        if library:
-            return load_model(library).params
-        return parse_model(exercise.stub.read_text("utf-8"), exercise.stub).params
-    except (OSError, ModelError, UnicodeDecodeError):
-        return None
-
-
-def _check_params(exercise: Exercise, spec: dict, where: str, lines) -> None:
-    """Each parameter a check sets or draws is one of the model's, with a value of its type."""
-    library = exercise.wrapper or exercise.sampler_for
-    if library:
-        try:
-            load_model(library)
-        except ModelError as err:
-            key = "wrapper" if exercise.wrapper else "sampler_for"
-            raise ExerciseError(
-                f"{where}:{lines.line('', 0, key)}: {key} = {library!r}: {err}"
-            ) from None
-    if exercise.wrapper and exercise.replaces:
-        includes = load_model(exercise.wrapper).includes
-        if exercise.replaces not in includes:
-            raise ExerciseError(
-                f"{where}:{lines.line('', 0, 'replaces')}: replaces = {exercise.replaces!r} is "
-                f"not a file the wrapper {exercise.wrapper} includes ({', '.join(includes)})"
-            )
-    header = header_params(exercise)
-    if header is None:
-        return
-    for index, check in enumerate(exercise.checks):
-        raw = spec["checks"][index]
-        groups = sum(check.same, ())
-        for key, names in (("params", check.params), ("ranges", check.ranges), ("same", groups)):
-            line = lines.line(*(("checks", index) if key in raw else ("defaults", 0)), key)
-            schema.check_param_names(names, header, where, line, f"check {check.name}: {key}")
-        line = lines.line(*(("checks", index) if "ranges" in raw else ("defaults", 0)), "ranges")
-        for name, (low, high) in check.ranges.items():
-            param = header[name]
-            if param.kind == "float" and (low < param.minimum or high > param.maximum):
-                raise ExerciseError(
-                    f"{where}:{line}: check {check.name}: ranges.{name} = [{low:g}, {high:g}] "
-                    f"leaves the header's range [{param.minimum:g}, {param.maximum:g}]; narrow it"
-                )
-        line = lines.line(*(("checks", index) if "params" in raw else ("defaults", 0)), "params")
-        for name, value in check.params.items():
-            problem = schema.param_value_problem(header[name], value)
-            if problem:
-                raise ExerciseError(f"{where}:{line}: check {check.name}: params.{name} {problem}")
 
 
 def find_exercises(root: str | Path) -> list[Exercise]:
@@ -289,7 +216,7 @@ def read_submission(path: Path, root: Path | None = None) -> str:
 
 
 _COMMENTS = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
-_SIGNATURE = re.compile(r"\b(\w+)\s+(\w+)\s*\(([^()]*)\)\s*\{")
+_SIGNATURE = headers.SIGNATURE
 
 
 def _types(params: str) -> list[str]:

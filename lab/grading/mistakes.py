@@ -29,7 +29,8 @@ from pathlib import Path
 
 from lab.glsl import label_of
 from lab.grading import schema
-from lab.grading.exercise import Exercise, ExerciseError, header_params
+from lab.grading.exercise import Exercise, ExerciseError
+from lab.grading.headers import header_params
 
 if sys.version_info >= (3, 11):
     import tomllib
