@@ -253,7 +253,7 @@ def check_keys(table: dict, keys: list[Key], where: str, what: str, place) -> No
         if key is None:
             raise ExerciseError(
                 f"{where}:{place(name)}: {what} has no key {name!r}{_close(name, known)}; "
-                f"its keys are {', '.join(known)} (docs/exercise-format.md lists them)"
+                f"its keys are {', '.join(known)} (python -m lab.grading.schema prints the format)"
             )
         test, words = TYPES[key.type]
         if not test(value):
