@@ -37,6 +37,7 @@ def test_release_builds_checks_tests_then_publishes_on_tags_only():
     assert 'BRDF_LAB_WHEEL="$PWD/$wheel"' in job["install-tests"]
     assert "tests/test_install.py" in job["install-tests"]
     assert "python -m venv" in job["install-tests"]  # a clean venv, not the build's
+    assert "b.RUN_PACKAGES" in job["install-tests"]  # bootstrap's system packages, not a copy
     for name in ("publish-pypi", "github-release"):
         assert "needs: [build, install-tests]" in job[name]
         assert "if: startsWith(github.ref, 'refs/tags/v')" in job[name]
