@@ -183,6 +183,8 @@ def test_the_install_line_is_the_same_everywhere():
     assert sources.install_line("git+https://x.org/a/b@v1") == "brdf-lab @ git+https://x.org/a/b@v1"
     readme = (ROOT / "README.md").read_text()
     assert f'pip install "{line}"' in readme
+    assert sources.placeholder("https://api.github.com/repos/my-org/defs/releases/assets/7") == ""
+    assert sources.placeholder("git+https://github.com/OWNER/brdf-lab@vX.Y.Z") == "OWNER"
     with pytest.raises(Exception, match="pin a tag or commit"):
         sources.install_line("git+https://github.com/brdf-lab/brdf-lab")
 

@@ -22,9 +22,9 @@ from lab.resources import install_line as release_line
 
 TOKEN_SECRET = "BRDF_LAB_DEFINITIONS_TOKEN"  # the Actions secret, and the variable init reads
 VERSION = re.compile(r"\d+(\.\d+)*((a|b|rc|\.post|\.dev)\d+)?")
-PLACEHOLDERS = re.compile(
-    r"X\.Y\.Z|\bOWNER\b|\bORG\b|<[^>]*>|__[A-Z0-9_]+__|example\.(com|org)|github\.com/example/",
-    re.I,
+PLACEHOLDERS = (
+    re.compile(r"X\.Y\.Z|\bOWNER\b|\bORG\b|<[^<>]*>|__[A-Z0-9_]+__"),  # written in capitals
+    re.compile(r"example\.(com|org)|github\.com/example/", re.I),
 )
 
 
@@ -60,8 +60,8 @@ def install_line(spec: str | None) -> str:
 
 def placeholder(text: str) -> str:
     """The placeholder in `text` ('' when there is none)."""
-    found = PLACEHOLDERS.search(text)
-    return found.group(0) if found else ""
+    found = [m.group(0) for pattern in PLACEHOLDERS if (m := pattern.search(text))]
+    return found[0] if found else ""
 
 
 class _KeepTokenHome(urllib.request.HTTPRedirectHandler):
