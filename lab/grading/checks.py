@@ -89,6 +89,7 @@ def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
     zero (terms switched off so that the one under test shows alone).
     """
     rng = np.random.default_rng([seed, index])
+    model = kind_of(check).params_model(check, model)
     params = dict(check.params)
     for key, names in [("ranges", list(check.ranges)), ("same", sum(check.same, ()))]:
         for name in names:

@@ -119,6 +119,12 @@ class CheckKind:
     def validate(self, check: Check, where: str) -> None:
         """Reject settings this kind cannot grade with (ExerciseError); nothing by default."""
 
+    def params_model(self, check: Check, model: Model) -> Model:
+        """The model whose header hidden mode draws this check's parameters from (and checks
+        its `ranges` against): the exercise's solution `model`, unless the kind runs the
+        student's code on another model (exercise 11's tests of a target BRDF)."""
+        return model
+
     def angles(self, check: Check) -> np.ndarray | None:
         """(n, 4) rows theta_i, phi_i, theta_o, phi_o in degrees, or None (not pairs)."""
         return None

@@ -1,0 +1,321 @@
+"""`kind = "properties"`: a student's tests of BRDF properties (exercise 11), run on a model.
+
+The student's file defines `directional_albedo(V, N, X, Y)` and `reciprocity_error(L, V,
+N, X, Y)` and calls `BRDF(L, V, N, X, Y)`, which it does not define: the check links it with
+its `target` (a library model, or a `.glsl` file beside exercise.toml such as a deliberately
+broken one) and runs both functions in shaders/views/grade_properties.glsl: the albedo at
+`albedo_rows` viewing angles (the last `grazing_rows` of them near the horizon) and the
+reciprocity error at `pairs` direction pairs, in a shading frame turned away from the axes.
+
+What the values should be is the grader's own measurement of the target, made apart from any
+student code: the albedo by a fine quadrature (centred on the mirror direction, where lobes
+are) of the target's BRDF evaluated on the GPU, the reciprocity error from f(L, V) and
+f(V, L) evaluated there. Both travel with the render (row 1 of the raw values, the
+program's are row 0), so a check never trusts the solution's numbers: a test that always
+says "pass" gets nothing, and the verdicts (energy conserved? reciprocal?) follow from the
+measured values. Hidden mode draws the target's parameters in the check's `ranges` (see
+`params_model`) and the rows and the frame from the drawn seed.
+"""
+
+from __future__ import annotations
+
+import functools
+import html
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from lab.glsl import CompileError, ShaderCompileError, label_of
+from lab.grading.kinds import CheckKind
+from lab.grading.result import CheckResult, failed, passed
+from lab.grading.spec import Check, ExerciseError
+from lab.ibl.chisquare import random_frame
+from lab.models import Model, ModelError, load_model, model_names
+
+VIEW = "grade_properties"
+PROTOTYPE = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y); "  # before the student's code
+EPS = 1e-7  # terms/common.glsl's EPS: the floor of reciprocity_error's denominator
+GRAZING = (80.0, 88.0)  # theta_V of the grazing albedo rows, degrees
+SPREAD = 78.0  # the other albedo rows are stratified over [0, SPREAD] degrees
+RECIPROCAL = 0.01  # a reciprocity error above this says "not reciprocal"
+TRUTH_U, TRUTH_PSI = 256, 128  # the grader's albedo quadrature (per row: 32,768 directions)
+
+
+@functools.lru_cache(maxsize=32)
+def target_model(target: str) -> Model:
+    """The model a check runs the student's tests on (a library name or a file's path)."""
+    return load_model(Path(target) if target.endswith(".glsl") else target)
+
+
+def linked(student: Model, target: Model) -> Model:
+    """The student's tests with the target's BRDF after them (a prototype on the first line
+    keeps the file's own line numbers), its parameters and included terms."""
+    code = PROTOTYPE + student.code.rstrip("\n") + "\n" + target.code
+    return replace(target, path=student.path, code=code, loop_limit=student.loop_limit)
+
+
+def _from_target(err: ShaderCompileError, student: Model, target: Model) -> ShaderCompileError:
+    """Compile errors past the student's last line belong to the target's file: a helper
+    of the student's named like one of the model's clashes there."""
+    lines = len(student.code.rstrip("\n").splitlines())
+    label = label_of(student.path)
+    errors = []
+    for e in err.errors:
+        if e.file == label and e.line > lines:
+            message = (
+                f"{e.message} (the model your tests run on is linked after your file: rename "
+                "your function or global if the model defines the same name)"
+            )
+            e = CompileError(label_of(target.path), e.line - lines, message)
+        errors.append(e)
+    return ShaderCompileError(errors, err.log)
+
+
+def albedo_truth(renderer, target: Model, params: dict, views: np.ndarray) -> np.ndarray:
+    """max over channels of the integral of f(L, V) cos(theta_L) over the upper hemisphere,
+    for each view (theta_V, phi_V) in degrees: directions L around the mirror direction of V
+    at angle t = pi u^2 (u and the azimuth psi on midpoint grids; Jacobian sin t 2 pi u)."""
+    u = (np.arange(TRUTH_U) + 0.5) / TRUTH_U
+    psi = (np.arange(TRUTH_PSI) + 0.5) * (2.0 * np.pi / TRUTH_PSI)
+    t = np.pi * u * u
+    weight = np.sin(t) * 2.0 * np.pi * u * (1.0 / TRUTH_U) * (2.0 * np.pi / TRUTH_PSI)
+    Ls, Vs, ws = [], [], []
+    for theta_v, phi_v in np.radians(views):
+        V = np.array([np.sin(theta_v) * np.cos(phi_v), np.sin(theta_v) * np.sin(phi_v)])
+        V = np.append(V, np.cos(theta_v))
+        R = np.array([-V[0], -V[1], V[2]])
+        T1 = np.cross([0.0, 0.0, 1.0], R) if abs(R[2]) < 0.999 else np.array([1.0, 0.0, 0.0])
+        T1 /= np.linalg.norm(T1)
+        T2 = np.cross(R, T1)
+        around = np.cos(psi)[None, :, None] * T1 + np.sin(psi)[None, :, None] * T2
+        L = np.cos(t)[:, None, None] * R + np.sin(t)[:, None, None] * around
+        Ls.append(L.reshape(-1, 3))
+        Vs.append(np.broadcast_to(V, (L.shape[0] * L.shape[1], 3)))
+        ws.append(np.repeat(weight, TRUTH_PSI))
+    L, V, w = np.concatenate(Ls), np.concatenate(Vs), np.concatenate(ws)
+    f = renderer.probe(target, params, L, V).astype(np.float64)
+    per = (f * (np.maximum(L[:, 2], 0.0) * w)[:, None]).reshape(len(views), -1, 3).sum(axis=1)
+    return per.max(axis=1)
+
+
+def reciprocity_truth(renderer, target: Model, params: dict, pairs: np.ndarray) -> np.ndarray:
+    """max over channels of |f(L, V) - f(V, L)| / max(f(L, V), f(V, L), EPS) per pair."""
+    both = np.concatenate([pairs, pairs[:, [2, 3, 0, 1]]])
+    f = renderer.eval_angles(target, params, both).astype(np.float64).reshape(2, len(pairs), 3)
+    top = np.maximum(np.maximum(f[0], f[1]), EPS)
+    return (np.abs(f[0] - f[1]) / top).max(axis=1)
+
+
+class PropertiesKind(CheckKind):
+    name = "properties"
+    order = 60
+    purpose_of = ""  # its rows and frame are drawn from `seed`
+    fields = {"target": "", "albedo_rows": 6, "grazing_rows": 2}
+
+    # -- inputs ------------------------------------------------------------------------------
+    def validate(self, check: Check, where: str) -> None:
+        o, here = check.options, f"{where}: check {check.name}"
+        target = o["target"]
+        if target.endswith(".glsl"):
+            path = (Path(where).parent / target).resolve()
+            if not path.is_file():
+                raise ExerciseError(f"{here}: target {target}: no such file beside exercise.toml")
+            o["target"] = str(path)
+        elif target not in model_names():
+            raise ExerciseError(
+                f"{here}: target {target!r} is neither a library model ({', '.join(model_names())})"
+                " nor a .glsl file beside exercise.toml"
+            )
+        if not 1 <= o["albedo_rows"] <= 64 or not 0 <= o["grazing_rows"] <= o["albedo_rows"]:
+            raise ExerciseError(
+                f"{here}: albedo_rows must be 1 to 64 and grazing_rows 0 to albedo_rows"
+            )
+        if not 0 <= check.pairs <= 1024:
+            raise ExerciseError(f"{here}: pairs (reciprocity pairs) must be 0 to 1024")
+
+    def params_model(self, check: Check, model: Model) -> Model:
+        """Hidden mode draws the target's parameters (its header, the check's ranges)."""
+        return target_model(check.options["target"])
+
+    def rows(self, check: Check) -> np.ndarray:
+        """(n, 4) rows theta_L, phi_L, theta_V, phi_V in degrees, fixed by the seed: first the
+        albedo rows (theta_L = -1), stratified in theta_V with the last near the horizon,
+        then the reciprocity pairs (both directions above the horizon)."""
+        return _rows(int(check.seed), check.options["albedo_rows"],
+                     check.options["grazing_rows"], int(check.pairs))
+
+    def frame(self, check: Check) -> np.ndarray:
+        """The shading frame, rows X, Y, N, turned away from the axes (from the seed)."""
+        return random_frame(int(check.seed) * 7 + 3)
+
+    def albedo_count(self, check: Check) -> int:
+        return int(check.options["albedo_rows"])
+
+    # -- render --------------------------------------------------------------------------
+    def render(self, renderer, model: Model, check: Check) -> np.ndarray:
+        """(2, n): the program's values at the rows, and the grader's measurement there."""
+        import moderngl
+
+        target = target_model(check.options["target"])
+        program = linked(model, target)
+        rows = self.rows(check)
+        X, Y, N = self.frame(check)
+        width = min(len(rows), 1024)
+        height = -(-len(rows) // width)
+        data = np.zeros((width * height, 4), np.float32)
+        data[: len(rows)] = np.radians(rows)
+        data[: self.albedo_count(check), 0] = -1.0
+        texture = renderer.ctx.texture((width, height), 4, data, dtype="f4")
+        texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        texture.use(0)
+        uniforms = {"u_rows": 0, "u_X": tuple(X), "u_Y": tuple(Y), "u_N": tuple(N)}
+        try:
+            fbo = renderer._run(program, VIEW, check.params, (width, height), uniforms)
+            got = renderer._read(fbo).reshape(-1, 4)[: len(rows), 0].astype(np.float64)
+        except ShaderCompileError as err:
+            raise _from_target(err, model, target) from None
+        finally:
+            texture.release()
+        return np.stack([got, self.truth(renderer, target, check)])
+
+    def truth(self, renderer, target: Model, check: Check) -> np.ndarray:
+        rows, n = self.rows(check), self.albedo_count(check)
+        albedo = albedo_truth(renderer, target, check.params, rows[:n, 2:])
+        pairs = reciprocity_truth(renderer, target, check.params, rows[n:])
+        return np.concatenate([albedo, pairs])
+
+    def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:
+        return np.asarray(raw, np.float64)
+
+    def where(self, check: Check, x: int, y: int) -> str:
+        rows = self.rows(check)
+        k = min(y * 1024 + x, len(rows) - 1)
+        if k < self.albedo_count(check):
+            return f"directional_albedo at θV = {rows[k, 2]:.1f}°"
+        return "reciprocity_error at (θL, φL, θV, φV) = ({:.1f}°, {:.1f}°, {:.1f}°, {:.1f}°)".format(
+            *rows[k]
+        )
+
+    # -- compare -------------------------------------------------------------------------
+    @staticmethod
+    def _off(check: Check, got: np.ndarray, truth: np.ndarray) -> np.ndarray:
+        """Rows where `got` is outside the tolerance of `truth` (NaN and Inf are)."""
+        got = np.nan_to_num(np.asarray(got, np.float64), nan=np.inf)
+        return ~(np.abs(got - truth) <= check.atol + check.rtol * np.abs(truth))
+
+    def verdicts(self, check: Check, values: np.ndarray, truth: np.ndarray) -> tuple[str, str]:
+        """What values say of the model, judged on the rows where the grader's measurement is
+        clear of the thresholds by twice the tolerance: energy and reciprocity, in words."""
+        n = self.albedo_count(check)
+        tol = 2.0 * (check.atol + check.rtol * np.abs(truth))
+        values = np.nan_to_num(np.asarray(values, np.float64), nan=0.0)
+        clear_a = np.abs(truth[:n] - 1.0) > tol[:n]
+        gain = bool((values[:n][clear_a] > 1.0).any())
+        clear_r = (truth[n:] > RECIPROCAL + tol[n:]) | (truth[n:] < RECIPROCAL - tol[n:])
+        broken = bool((values[n:][clear_r] > RECIPROCAL).any())
+        energy = "gains energy" if gain else "conserves energy"
+        return energy, ("not reciprocal" if broken else "reciprocal")
+
+    def compare(self, check: Check, expected: np.ndarray, raw: np.ndarray) -> CheckResult:
+        got, truth = raw[0], raw[1]
+        n, rows = self.albedo_count(check), self.rows(check)
+        off = self._off(check, got, truth)
+        extra = {"extra": {"rows": rows.tolist(), "got": got.tolist(), "truth": truth.tolist(),
+                           "albedo_rows": n}}
+        mine, real = self.verdicts(check, got, truth), self.verdicts(check, truth, truth)
+        found = f"the model {real[0]} and is {real[1]}"
+        if not off.any() and mine == real:
+            largest = f"largest albedo {truth[:n].max():.3f}"
+            if len(truth) > n:
+                largest += f", largest reciprocity error {truth[n:].max():.3g}"
+            return passed(check, f"your tests find that {found} ({largest})", **extra)
+        parts = []
+        if off[:n].any():
+            k = int(np.flatnonzero(off[:n])[0])
+            parts.append(
+                f"{int(off[:n].sum())} of {n} albedo values differ from the grader's (at θV = "
+                f"{rows[k, 2]:.1f}° your directional_albedo gives {got[k]:.4g}, the grader "
+                f"measures {truth[k]:.4g})"
+            )
+        if off[n:].any():
+            k = n + int(np.flatnonzero(off[n:])[0])
+            parts.append(
+                f"{int(off[n:].sum())} of {len(truth) - n} reciprocity errors differ (at (θL, "
+                f"φL, θV, φV) = ({rows[k, 0]:.0f}°, {rows[k, 1]:.0f}°, {rows[k, 2]:.0f}°, "
+                f"{rows[k, 3]:.0f}°) yours is {got[k]:.4g}, the grader's {truth[k]:.4g})"
+            )
+        if mine != real:
+            parts.append(f"your values say the model {mine[0]} and is {mine[1]}; in fact {found}")
+        return failed(check, "; ".join(parts), **extra)
+
+    def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
+        values = np.asarray(values)
+        if values.shape != reference.shape:
+            return True
+        truth = reference[1]
+        return bool(self._off(check, values[0], truth).any()) or self.verdicts(
+            check, values[0], truth
+        ) != self.verdicts(check, truth, truth)
+
+    def nearest(self, check: Check, got, expected, candidates: dict) -> str | None:
+        """The known mistake whose values the student's match at every row (within the
+        check's tolerance), the closest of them."""
+        got = np.nan_to_num(np.asarray(got, np.float64), nan=np.inf)
+        best, best_off = None, np.inf
+        for key, other in candidates.items():
+            if other.shape != got.shape:
+                continue
+            scale = check.atol + check.rtol * np.abs(other[0])
+            off = float(np.max(np.abs(got[0] - other[0]) / scale)) if got.shape[1] else 0.0
+            if off <= 1.0 and off < best_off:
+                best, best_off = key, off
+        return best
+
+    # -- report --------------------------------------------------------------------------
+    def figures(self, result: CheckResult) -> list[str]:
+        data = result.extra
+        if not data.get("rows"):
+            return []
+        n = data["albedo_rows"]
+        lines = []
+        for k, (row, got, truth) in enumerate(zip(data["rows"], data["got"], data["truth"],
+                                                   strict=True)):
+            what = (f"directional_albedo, θV = {row[2]:.1f}°" if k < n else
+                    "reciprocity_error, (θL, φL, θV, φV) = ({:.0f}°, {:.0f}°, {:.0f}°, {:.0f}°)"
+                    .format(*row))
+            lines.append(f"<tr><td>{html.escape(what)}</td><td>{got:.4g}</td>"
+                         f"<td>{truth:.4g}</td></tr>")
+        return [
+            '<figure class="properties"><table><thead><tr><th scope="col">row</th>'
+            '<th scope="col">yours</th><th scope="col">grader\'s</th></tr></thead><tbody>'
+            + "".join(lines) + "</tbody></table><figcaption>your tests' values beside the "
+            "grader's measurement of the same model</figcaption></figure>"
+        ]
+
+    def practice(self, exercise, check: Check, values) -> None:
+        """The page's practice mode cannot link a test with a model yet: left out there."""
+        return None
+
+
+@functools.lru_cache(maxsize=256)
+def _rows(seed: int, n_albedo: int, n_grazing: int, n_pairs: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    spread = n_albedo - n_grazing
+    edges = np.linspace(0.0, SPREAD, spread + 1)
+    theta_v = list(rng.uniform(edges[:-1], edges[1:])) if spread else []
+    g_edges = np.linspace(*GRAZING, n_grazing + 1)
+    theta_v += list(rng.uniform(g_edges[:-1], g_edges[1:])) if n_grazing else []
+    albedo = np.zeros((n_albedo, 4))
+    albedo[:, 0] = -1.0
+    albedo[:, 2] = theta_v
+    albedo[:, 3] = rng.uniform(0.0, 360.0, n_albedo)
+    theta = np.degrees(np.arccos(rng.uniform(0.1, 1.0, (n_pairs, 2))))
+    phi = rng.uniform(0.0, 360.0, (n_pairs, 2))
+    pairs = np.stack([theta[:, 0], phi[:, 0], theta[:, 1], phi[:, 1]], axis=1)
+    table = np.concatenate([albedo, pairs])
+    table.flags.writeable = False
+    return table
+
+
+KIND = PropertiesKind()
