@@ -56,8 +56,10 @@ def main() -> int:
         hints = sorted({r.diagnosis for r in task.checks() if not r.passed and r.diagnosis})
         where = "reference" if mode is None else f"seed {mode}"
         flag = "named" if named(label, task) else "-"
-        print(f"{label:28s} {where:9s} {task.score:4.1f}/{task.max_score:.0f} {flag:5s} "
-              f"{' | '.join(h[:110] for h in hints) or 'no hint'}")
+        print(
+            f"{label:28s} {where:9s} {task.score:4.1f}/{task.max_score:.0f} {flag:5s} "
+            f"{' | '.join(h[:110] for h in hints) or 'no hint'}"
+        )
     return 0
 
 

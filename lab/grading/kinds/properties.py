@@ -31,7 +31,7 @@ from lab.grading.kinds import CheckKind
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
 from lab.ibl.chisquare import random_frame
-from lab.models import Model, ModelError, load_model, model_names
+from lab.models import Model, load_model, model_names
 
 VIEW = "grade_properties"
 PROTOTYPE = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y); "  # before the student's code
@@ -40,6 +40,7 @@ GRAZING = (80.0, 88.0)  # theta_V of the grazing albedo rows, degrees
 SPREAD = 78.0  # the other albedo rows are stratified over [0, SPREAD] degrees
 RECIPROCAL = 0.01  # a reciprocity error above this says "not reciprocal"
 TRUTH_U, TRUTH_PSI = 256, 128  # the grader's albedo quadrature (per row: 32,768 directions)
+_TRUTHS: dict[tuple, np.ndarray] = {}  # measurements by target, parameters and rows
 
 
 @functools.lru_cache(maxsize=32)
@@ -142,8 +143,12 @@ class PropertiesKind(CheckKind):
         """(n, 4) rows theta_L, phi_L, theta_V, phi_V in degrees, fixed by the seed: first the
         albedo rows (theta_L = -1), stratified in theta_V with the last near the horizon,
         then the reciprocity pairs (both directions above the horizon)."""
-        return _rows(int(check.seed), check.options["albedo_rows"],
-                     check.options["grazing_rows"], int(check.pairs))
+        return _rows(
+            int(check.seed),
+            check.options["albedo_rows"],
+            check.options["grazing_rows"],
+            int(check.pairs),
+        )
 
     def frame(self, check: Check) -> np.ndarray:
         """The shading frame, rows X, Y, N, turned away from the axes (from the seed)."""
@@ -180,10 +185,18 @@ class PropertiesKind(CheckKind):
         return np.stack([got, self.truth(renderer, target, check)])
 
     def truth(self, renderer, target: Model, check: Check) -> np.ndarray:
+        """The grader's measurement at the check's rows, made once per setting and process
+        (the solution, the student's program and every likely mistake share it)."""
         rows, n = self.rows(check), self.albedo_count(check)
-        albedo = albedo_truth(renderer, target, check.params, rows[:n, 2:])
-        pairs = reciprocity_truth(renderer, target, check.params, rows[n:])
-        return np.concatenate([albedo, pairs])
+        key = (str(target.path), target.code, repr(sorted(check.params.items())), rows.tobytes())
+        found = _TRUTHS.get(key)
+        if found is None:
+            albedo = albedo_truth(renderer, target, check.params, rows[:n, 2:])
+            pairs = reciprocity_truth(renderer, target, check.params, rows[n:])
+            if len(_TRUTHS) >= 64:
+                _TRUTHS.clear()
+            found = _TRUTHS[key] = np.concatenate([albedo, pairs])
+        return found.copy()
 
     def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:
         return np.asarray(raw, np.float64)
@@ -193,9 +206,8 @@ class PropertiesKind(CheckKind):
         k = min(y * 1024 + x, len(rows) - 1)
         if k < self.albedo_count(check):
             return f"directional_albedo at θV = {rows[k, 2]:.1f}°"
-        return "reciprocity_error at (θL, φL, θV, φV) = ({:.1f}°, {:.1f}°, {:.1f}°, {:.1f}°)".format(
-            *rows[k]
-        )
+        angles = ", ".join(f"{a:.1f}°" for a in rows[k])
+        return f"reciprocity_error at (θL, φL, θV, φV) = ({angles})"
 
     # -- compare -------------------------------------------------------------------------
     @staticmethod
@@ -221,8 +233,14 @@ class PropertiesKind(CheckKind):
         got, truth = raw[0], raw[1]
         n, rows = self.albedo_count(check), self.rows(check)
         off = self._off(check, got, truth)
-        extra = {"extra": {"rows": rows.tolist(), "got": got.tolist(), "truth": truth.tolist(),
-                           "albedo_rows": n}}
+        extra = {
+            "extra": {
+                "rows": rows.tolist(),
+                "got": got.tolist(),
+                "truth": truth.tolist(),
+                "albedo_rows": n,
+            }
+        }
         mine, real = self.verdicts(check, got, truth), self.verdicts(check, truth, truth)
         found = f"the model {real[0]} and is {real[1]}"
         if not off.any() and mine == real:
@@ -272,6 +290,27 @@ class PropertiesKind(CheckKind):
                 best, best_off = key, off
         return best
 
+    def explain(self, explainer, exercise, check, model, expected, got, live: bool) -> str:
+        """A test that gives one value whatever it measures (a test that always says
+        "pass"): said when no known mistake matched."""
+        if got is None or np.ndim(got) != 2 or got.shape[0] != 2:
+            return ""
+        n, (mine, truth) = self.albedo_count(check), np.asarray(got, np.float64)
+        said = []
+        for what, part, real in (
+            ("directional_albedo", mine[:n], truth[:n]),
+            ("reciprocity_error", mine[n:], truth[n:]),
+        ):
+            tol = check.atol + check.rtol * np.abs(real)
+            if len(part) > 1 and np.ptp(part) == 0.0 and np.ptp(real) > tol.max():
+                said.append(f"your {what} gives the same value, {part[0]:.4g}, for every input")
+        if not said:
+            return ""
+        return "; ".join(said) + (
+            ": a test must measure the BRDF linked with it (call BRDF(L, V, N, X, Y)), "
+            "whose values change with the directions and the model"
+        )
+
     # -- report --------------------------------------------------------------------------
     def figures(self, result: CheckResult) -> list[str]:
         data = result.extra
@@ -279,17 +318,24 @@ class PropertiesKind(CheckKind):
             return []
         n = data["albedo_rows"]
         lines = []
-        for k, (row, got, truth) in enumerate(zip(data["rows"], data["got"], data["truth"],
-                                                   strict=True)):
-            what = (f"directional_albedo, θV = {row[2]:.1f}°" if k < n else
-                    "reciprocity_error, (θL, φL, θV, φV) = ({:.0f}°, {:.0f}°, {:.0f}°, {:.0f}°)"
-                    .format(*row))
-            lines.append(f"<tr><td>{html.escape(what)}</td><td>{got:.4g}</td>"
-                         f"<td>{truth:.4g}</td></tr>")
+        for k, (row, got, truth) in enumerate(
+            zip(data["rows"], data["got"], data["truth"], strict=True)
+        ):
+            what = (
+                f"directional_albedo, θV = {row[2]:.1f}°"
+                if k < n
+                else "reciprocity_error, (θL, φL, θV, φV) = ({:.0f}°, {:.0f}°, {:.0f}°, {:.0f}°)".format(
+                    *row
+                )
+            )
+            lines.append(
+                f"<tr><td>{html.escape(what)}</td><td>{got:.4g}</td><td>{truth:.4g}</td></tr>"
+            )
         return [
             '<figure class="properties"><table><thead><tr><th scope="col">row</th>'
             '<th scope="col">yours</th><th scope="col">grader\'s</th></tr></thead><tbody>'
-            + "".join(lines) + "</tbody></table><figcaption>your tests' values beside the "
+            + "".join(lines)
+            + "</tbody></table><figcaption>your tests' values beside the "
             "grader's measurement of the same model</figcaption></figure>"
         ]
 

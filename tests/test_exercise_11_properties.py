@@ -1,0 +1,231 @@
+"""Exercise 11 (BRDF properties as code) and its check kind, `properties`.
+
+The grader's own measurement against closed forms; the solution full and the stub (and a
+test that always says "pass") 0 in reference mode and for 50 hidden seeds; the broken
+subjects found at every seed; each stored mistake loses points with its own hint; the
+held-out wrong submissions (tests/exercise_11/wrong, written before the tuning) all lose
+points and the correct rewrites none.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lab.grading.checks import Grader, hidden_variant, prepare
+from lab.grading.exercise import load_exercise
+from lab.grading.kinds import kind_of
+from lab.grading.kinds import properties as P
+from lab.grading.spec import ExerciseError
+
+ROOT = Path(__file__).resolve().parents[1]
+EXERCISE = load_exercise(ROOT / "exercises" / "11_brdf_properties")
+SEEDS = 50
+HERE = ROOT / "tests" / "exercise_11"
+sys.path.insert(0, str(HERE))
+import measure  # noqa: E402 - the batch's own reader (also prints BEFORE/AFTER figures)
+
+
+@pytest.fixture(scope="module")
+def grader() -> Grader:
+    return Grader()  # no explainer: scores only
+
+
+def test_the_graders_measurement_matches_closed_forms(grader):
+    """Lambert's albedo is its albedo at every view; Lambert with the cosine inside has
+    albedo 2 kd / 3 and reciprocity error |cos L − cos V| / max(cos L, cos V)."""
+    renderer = grader.renderer
+    views = np.array([[0.0, 0.0], [40.0, 30.0], [75.0, 200.0], [88.0, 10.0]])
+    lambert = P.target_model("lambert")
+    got = P.albedo_truth(renderer, lambert, {"albedo": (0.8, 0.5, 0.2)}, views)
+    np.testing.assert_allclose(got, 0.8, atol=2e-3)
+    inside = P.target_model(str(EXERCISE.folder / "subjects" / "cosine_inside.glsl"))
+    got = P.albedo_truth(renderer, inside, {"kd": (0.9, 0.3, 0.3)}, views)
+    np.testing.assert_allclose(got, 0.6, atol=2e-3)
+    pairs = np.array([[20.0, 0.0, 60.0, 90.0], [70.0, 10.0, 10.0, 300.0], [30.0, 5.0, 30.0, 50.0]])
+    err = P.reciprocity_truth(renderer, inside, {"kd": (0.9, 0.3, 0.3)}, pairs)
+    cl, cv = np.cos(np.radians(pairs[:, 0])), np.cos(np.radians(pairs[:, 2]))
+    np.testing.assert_allclose(err, np.abs(cl - cv) / np.maximum(cl, cv), atol=1e-5)
+
+
+def test_the_measurement_matches_the_numpy_oracle_for_a_reciprocal_model(grader):
+    """For a reciprocal model the albedo over L at V is lab.reference's albedo over V at L."""
+    from lab import reference
+
+    params = {"kd": (0.3, 0.3, 0.3), "ks": (0.5, 0.5, 0.5), "ke": 30.0}
+    views = np.array([[10.0, 0.0], [60.0, 0.0], [85.0, 0.0]])
+    got = P.albedo_truth(grader.renderer, P.target_model("phong"), params, views)
+    for (theta, _), value in zip(views, got, strict=True):
+        want = reference.directional_albedo("phong", params, [theta])
+        assert value == pytest.approx(float(np.max(want)), rel=3e-3), theta
+
+
+def _scores(grader, files: dict[str, Path], seed: int | None) -> dict[str, tuple[float, list]]:
+    """Each file's score at one setting (None: reference mode) and its failed checks."""
+    out = {name: (0.0, []) for name in files}
+    readings = {name: prepare(EXERCISE, path) for name, path in files.items()}
+    solution = grader.solution_model(EXERCISE)
+    for index, check in enumerate(EXERCISE.checks):
+        drawn = hidden_variant(check, solution, seed, index) if seed is not None else check
+        expected = grader.expected(EXERCISE, drawn, live=seed is not None)
+        for name, reading in readings.items():
+            assert not reading.error, (name, reading.error)
+            result = grader.grade(EXERCISE, drawn, reading.model, reading.code, expected)
+            score, failed = out[name]
+            out[name] = (score + result.points, failed + ([] if result.passed else [check.name]))
+    return out
+
+
+def test_solution_full_stub_and_always_pass_zero_in_every_mode(grader):
+    files = {
+        "solution": EXERCISE.solution,
+        "stub": EXERCISE.stub,
+        "always_pass": HERE / "wrong" / "always_pass.glsl",
+    }
+    problems = []
+    for seed in [None, *range(SEEDS)]:
+        scores = _scores(grader, files, seed)
+        if scores["solution"][0] != EXERCISE.max_points:
+            problems.append(f"seed {seed}: solution fails {scores['solution'][1]}")
+        for name in ("stub", "always_pass"):
+            if scores[name][0] != 0.0:
+                problems.append(f"seed {seed}: {name} scores {scores[name][0]}")
+    assert not problems, "\n".join(problems)
+
+
+def test_correct_rewrites_full_marks_on_ten_seeds(grader):
+    files = {p.stem: p for p in sorted((EXERCISE.solution.parent / "correct").glob("*.glsl"))}
+    assert len(files) >= 2
+    for seed in [None, *range(10)]:
+        for name, (score, failed) in _scores(grader, files, seed).items():
+            assert score == EXERCISE.max_points, (seed, name, failed)
+
+
+def test_the_broken_subjects_are_broken_at_every_seed(grader):
+    """What the checks on them are for: at every hidden setting the grader's measurement
+    of gains_at_grazing passes 1 at a grazing view (well clear of the tolerance) and that
+    of cosine_inside shows a large reciprocity error; the others stay reciprocal."""
+    solution = grader.solution_model(EXERCISE)
+    kind = kind_of(EXERCISE.checks[0])
+    for seed in range(SEEDS):
+        for index, check in enumerate(EXERCISE.checks):
+            drawn = hidden_variant(check, solution, seed, index)
+            target = P.target_model(drawn.options["target"])
+            truth = kind.truth(grader.renderer, target, drawn)
+            energy, reciprocal = kind.verdicts(drawn, truth, truth)
+            n = kind.albedo_count(drawn)
+            if check.name == "gains_at_grazing":
+                assert truth[n - 1] > 1.2 and energy == "gains energy", (seed, truth[:n])
+            if check.name == "cosine_inside":
+                assert truth[n:].max() > 0.5 and reciprocal == "not reciprocal", seed
+            if check.name in ("lambert", "phong", "ward", "no_horizon"):
+                assert reciprocal == "reciprocal" and truth[n:].max() < 1e-3, (seed, check.name)
+
+
+def test_hidden_mode_draws_the_targets_parameters_rows_and_frame(grader):
+    solution = grader.solution_model(EXERCISE)
+    index, check = next((i, c) for i, c in enumerate(EXERCISE.checks) if c.name == "phong")
+    kind = kind_of(check)
+    drawn = [hidden_variant(check, solution, seed, index) for seed in range(5)]
+    assert len({d.params["ke"] for d in drawn}) == 5
+    assert all(2.0 <= d.params["ke"] <= 60.0 for d in drawn)
+    assert len({kind.rows(d)[0, 2] for d in drawn}) == 5
+    assert len({tuple(kind.frame(d)[2]) for d in drawn}) == 5
+    rows = kind.rows(drawn[0])
+    assert (rows[:6, 0] == -1.0).all() and 80.0 <= rows[5, 2] <= 88.0
+    assert (rows[6:, [0, 2]] < 90.0).all()
+
+
+def test_a_check_names_a_target_that_exists(tmp_path):
+    folder = tmp_path / "11_x"
+    folder.mkdir()
+    text = (EXERCISE.folder / "exercise.toml").read_text(encoding="utf-8")
+    (folder / "exercise.toml").write_text(text.replace('"phong"', '"phongg"', 1), "utf-8")
+    with pytest.raises(ExerciseError, match="phongg.*neither a library model"):
+        load_exercise(folder)
+    text = text.replace('"subjects/cosine_inside.glsl"', '"subjects/missing.glsl"')
+    (folder / "exercise.toml").write_text(text, "utf-8")
+    with pytest.raises(ExerciseError, match="missing.glsl: no such file"):
+        load_exercise(folder)
+
+
+def test_the_page_leaves_the_exercise_out():
+    for check in EXERCISE.checks:
+        assert kind_of(check).practice(EXERCISE, check, {}) is None
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory) -> dict:
+    """With the diagnosis: each stored mistake (reference mode) and the held-out batch with
+    the correct rewrites (reference mode and hidden seed 1), in one pool."""
+    from lab.grading.mistakes import known_mistakes
+    from lab.grading.runner import Pool, Task
+
+    tmp = tmp_path_factory.mktemp("mistakes11")
+    solution = EXERCISE.solution.read_text(encoding="utf-8")
+    tasks = {}
+    for variant in known_mistakes(EXERCISE):
+        path = tmp / variant.key / EXERCISE.student_file
+        path.parent.mkdir()
+        path.write_text(variant.apply(solution), encoding="utf-8")
+        tasks["mistake", variant.key] = (Task(EXERCISE, path), variant.hint)
+    for label, path in measure.submissions().items():
+        for mode in measure.MODES:
+            tasks["batch", label, mode] = (Task(EXERCISE, path, mode), "")
+    with Pool(2, timeout=60.0) as pool:
+        pool.run([task for task, _ in tasks.values()])
+    return tasks
+
+
+def test_each_stored_mistake_loses_points_with_its_own_hint(graded):
+    missing = []
+    for key, (task, hint) in graded.items():
+        if key[0] != "mistake":
+            continue
+        assert task.score < task.max_score, f"{key[1]} scores full marks"
+        said = [r.diagnosis for r in task.checks() if not r.passed]
+        if not any(hint[:40] in s for s in said):
+            missing.append(f"{key[1]} ({hint[:50]}...): {said}")
+    assert not missing, "\n".join(missing)
+
+
+def test_every_held_out_wrong_submission_loses_points_and_no_correct_one_does(graded):
+    for key, (task, _) in graded.items():
+        if key[0] != "batch":
+            continue
+        label = key[1]
+        if label.startswith("wrong/"):
+            assert task.score < task.max_score, key
+        elif label != "stub":
+            assert task.score == task.max_score, (key, [r.message for r in task.checks()])
+
+
+def test_most_held_out_mistakes_are_named(graded):
+    """The AFTER figure: at least 10 of the 14 named in reference mode (BEFORE: 0)."""
+    named = [
+        key[1]
+        for key, (task, _) in graded.items()
+        if key[0] == "batch" and key[1].startswith("wrong/") and key[2] is None
+        if measure.named(key[1], task)
+    ]
+    assert len(named) >= 10, named
+
+
+def test_a_brdf_of_the_students_own_is_refused_in_the_models_file(grader, tmp_path):
+    """A file that defines BRDF itself (to answer for the model) clashes with the model
+    linked after it: the compile error names the model's file and line, not a line past
+    the end of the student's file."""
+    path = tmp_path / EXERCISE.student_file
+    code = EXERCISE.solution.read_text(encoding="utf-8")
+    own = "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.5); }\n"
+    path.write_text(code + own, encoding="utf-8")
+    reading = prepare(EXERCISE, path)
+    assert not reading.error, reading.error
+    check = next(c for c in EXERCISE.checks if c.name == "lambert")
+    result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
+    assert not result.passed and "does not compile" in result.message
+    assert result.errors[0].startswith("shaders/brdfs/lambert.glsl:"), result.errors
+    assert "rename your function" in result.errors[0]
