@@ -9,6 +9,7 @@ points and the correct rewrites none.
 
 from __future__ import annotations
 
+import shutil
 import sys
 from pathlib import Path
 
@@ -59,7 +60,7 @@ def test_the_measurement_matches_the_numpy_oracle_for_a_reciprocal_model(grader)
     views = np.array([[10.0, 0.0], [60.0, 0.0], [85.0, 0.0]])
     got = P.albedo_truth(grader.renderer, P.target_model("phong"), params, views)
     for (theta, _), value in zip(views, got, strict=True):
-        want = reference.directional_albedo("phong", params, [theta])
+        want = reference.directional_albedo("phong", params, float(theta))
         assert value == pytest.approx(float(np.max(want)), rel=3e-3), theta
 
 
@@ -141,9 +142,10 @@ def test_hidden_mode_draws_the_targets_parameters_rows_and_frame(grader):
 
 def test_a_check_names_a_target_that_exists(tmp_path):
     folder = tmp_path / "11_x"
-    folder.mkdir()
+    shutil.copytree(EXERCISE.folder / "subjects", folder / "subjects")
     text = (EXERCISE.folder / "exercise.toml").read_text(encoding="utf-8")
-    (folder / "exercise.toml").write_text(text.replace('"phong"', '"phongg"', 1), "utf-8")
+    wrong = text.replace('target = "phong"', 'target = "phongg"')
+    (folder / "exercise.toml").write_text(wrong, "utf-8")
     with pytest.raises(ExerciseError, match="phongg.*neither a library model"):
         load_exercise(folder)
     text = text.replace('"subjects/cosine_inside.glsl"', '"subjects/missing.glsl"')
