@@ -254,6 +254,8 @@ def test_every_exercise_has_the_files_of_its_handout():
         kinds = {c.kind for c in exercise.checks}
         if exercise.sampler_for:  # a sampler: its distribution, its pdf, its renders
             assert {"chi_square", "pdf_integral", "ibl_render"} <= kinds, exercise.name
+        elif kinds == {"properties"}:  # tests of the models linked with them (11)
+            assert len({c.options["target"] for c in exercise.checks}) >= 5, exercise.name
         else:
             assert "probe" in kinds and "sphere" in kinds
         assert all(c.pairs >= 256 for c in exercise.checks if c.kind == "probe")
