@@ -216,18 +216,31 @@ def test_most_held_out_mistakes_are_named(graded):
     assert len(named) >= 10, named
 
 
-def test_a_brdf_of_the_students_own_is_refused_in_the_models_file(grader, tmp_path):
-    """A file that defines BRDF itself (to answer for the model) clashes with the model
-    linked after it: the compile error names the model's file and line, not a line past
-    the end of the student's file."""
+def test_a_brdf_of_the_students_own_is_refused(tmp_path):
+    """A file that defines BRDF itself (to answer for the model) is refused before anything
+    renders, at its own line, with or without the stub's include line."""
     path = tmp_path / EXERCISE.student_file
     code = EXERCISE.solution.read_text(encoding="utf-8")
-    own = "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.5); }\n"
-    path.write_text(code + own, encoding="utf-8")
+    own = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.5); }\n"
+    for text in (code, code.replace("// @include terms/brdf_prototype.glsl\n", "")):
+        path.write_text(text + own, encoding="utf-8")
+        line = len(text.splitlines()) + 1
+        error = prepare(EXERCISE, path).error
+        assert f"properties.glsl:{line}: remove your definition of BRDF" in error, error
+
+
+def test_a_clash_with_the_linked_model_is_reported_in_the_models_file(grader, tmp_path):
+    """A helper named like one of the linked model's own functions clashes there: the
+    compile error names the model's file and line, not a line past the student's file."""
+    path = tmp_path / EXERCISE.student_file
+    code = EXERCISE.solution.read_text(encoding="utf-8")
+    path.write_text(code + "float microfacet_D(float x) { return x; }\n", encoding="utf-8")
     reading = prepare(EXERCISE, path)
     assert not reading.error, reading.error
-    check = next(c for c in EXERCISE.checks if c.name == "lambert")
+    check = next(c for c in EXERCISE.checks if c.name == "cook_torrance")
     result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
     assert not result.passed and "does not compile" in result.message
-    assert result.errors[0].startswith("shaders/brdfs/lambert.glsl:"), result.errors
+    assert result.errors[0].startswith("shaders/brdfs/cook_torrance.glsl:21:"), result.errors
     assert "rename your function" in result.errors[0]
+    lambert = next(c for c in EXERCISE.checks if c.name == "lambert")  # no clash there
+    assert grader.grade(EXERCISE, lambert, reading.model, reading.code, None).passed

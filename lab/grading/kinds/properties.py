@@ -53,7 +53,10 @@ def linked(student: Model, target: Model) -> Model:
     """The student's tests with the target's BRDF after them (a prototype on the first line
     keeps the file's own line numbers), its parameters and included terms."""
     code = PROTOTYPE + student.code.rstrip("\n") + "\n" + target.code
-    return replace(target, path=student.path, code=code, loop_limit=student.loop_limit)
+    includes = list(dict.fromkeys([*student.includes, *target.includes]))
+    return replace(
+        target, path=student.path, code=code, includes=includes, loop_limit=student.loop_limit
+    )
 
 
 def _from_target(err: ShaderCompileError, student: Model, target: Model) -> ShaderCompileError:
