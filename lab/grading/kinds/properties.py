@@ -324,12 +324,11 @@ class PropertiesKind(CheckKind):
         for k, (row, got, truth) in enumerate(
             zip(data["rows"], data["got"], data["truth"], strict=True)
         ):
+            angles = ", ".join(f"{a:.0f}°" for a in row)
             what = (
                 f"directional_albedo, θV = {row[2]:.1f}°"
                 if k < n
-                else "reciprocity_error, (θL, φL, θV, φV) = ({:.0f}°, {:.0f}°, {:.0f}°, {:.0f}°)".format(
-                    *row
-                )
+                else f"reciprocity_error, (θL, φL, θV, φV) = ({angles})"
             )
             lines.append(
                 f"<tr><td>{html.escape(what)}</td><td>{got:.4g}</td><td>{truth:.4g}</td></tr>"
