@@ -242,6 +242,7 @@ class PropertiesKind(CheckKind):
                 "got": got.tolist(),
                 "truth": truth.tolist(),
                 "albedo_rows": n,
+                "off": np.flatnonzero(off).tolist(),
             }
         }
         mine, real = self.verdicts(check, got, truth), self.verdicts(check, truth, truth)
@@ -315,30 +316,43 @@ class PropertiesKind(CheckKind):
         )
 
     # -- report --------------------------------------------------------------------------
+    SHOWN_PAIRS = 8  # reciprocity rows in the report: the failing ones, else the largest
+
     def figures(self, result: CheckResult) -> list[str]:
+        """A table of the albedo rows and a few reciprocity pairs: yours, the grader's, and
+        a mark on each row outside the tolerance (not colour alone)."""
         data = result.extra
         if not data.get("rows"):
             return []
-        n = data["albedo_rows"]
+        n, off = data["albedo_rows"], set(data.get("off", []))
+        pairs = [k for k in sorted(off) if k >= n][: self.SHOWN_PAIRS]
+        if not pairs and len(data["truth"]) > n:
+            pairs = [n + int(np.argmax(data["truth"][n:]))]
         lines = []
-        for k, (row, got, truth) in enumerate(
-            zip(data["rows"], data["got"], data["truth"], strict=True)
-        ):
+        for k in [*range(n), *pairs]:
+            row, got, truth = data["rows"][k], data["got"][k], data["truth"][k]
             angles = ", ".join(f"{a:.0f}°" for a in row)
             what = (
                 f"directional_albedo, θV = {row[2]:.1f}°"
                 if k < n
                 else f"reciprocity_error, (θL, φL, θV, φV) = ({angles})"
             )
+            mark = "✗ differs" if k in off else "✓"
             lines.append(
-                f"<tr><td>{html.escape(what)}</td><td>{got:.4g}</td><td>{truth:.4g}</td></tr>"
+                f"<tr><td>{html.escape(what)}</td><td>{got:.4g}</td><td>{truth:.4g}</td>"
+                f"<td>{mark}</td></tr>"
             )
+        hidden = sum(1 for k in off if k >= n) - sum(1 for k in pairs if k in off)
+        more = f" ({hidden} more pairs differ)" if hidden > 0 else ""
         return [
-            '<figure class="properties"><table><thead><tr><th scope="col">row</th>'
-            '<th scope="col">yours</th><th scope="col">grader\'s</th></tr></thead><tbody>'
+            # A region of its own that scrolls (by keyboard too) on a narrow screen.
+            '<figure class="properties"><div style="overflow-x: auto" tabindex="0" role="region"'
+            ' aria-label="your values and the grader\'s"><table><thead><tr><th scope="col">row</th>'
+            '<th scope="col">yours</th><th scope="col">grader\'s</th>'
+            '<th scope="col">within tolerance</th></tr></thead><tbody>'
             + "".join(lines)
-            + "</tbody></table><figcaption>your tests' values beside the "
-            "grader's measurement of the same model</figcaption></figure>"
+            + "</tbody></table></div><figcaption>your tests' values beside the grader's "
+            f"measurement of the same model{more}</figcaption></figure>"
         ]
 
     def practice(self, exercise, check: Check, values) -> None:
