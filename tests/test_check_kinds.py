@@ -52,7 +52,15 @@ def course(tmp: Path, samples: object = 48) -> Path:
 
 
 def test_the_lab_kinds_are_registered():
-    assert kinds.names() == ("probe", "sphere", "polar", "chi_square", "pdf_integral", "ibl_render")
+    assert kinds.names() == (
+        "probe",
+        "sphere",
+        "polar",
+        "chi_square",
+        "pdf_integral",
+        "ibl_render",
+        "properties",  # exercise 11's tests of a linked model
+    )
 
 
 def test_an_unregistered_kind_is_named_in_a_clear_error(tmp_path):
