@@ -17,7 +17,12 @@ from lab.grading.exercise import find_exercises
 from lab.models import MODEL_DIR, load_model
 
 ROOT = Path(__file__).resolve().parent.parent
-EXERCISES = [e for e in find_exercises(ROOT / "exercises") if not e.sampler_for]
+# A solution that is a BRDF (not a sampler, nor exercise 11's tests of a linked model).
+EXERCISES = [
+    e
+    for e in find_exercises(ROOT / "exercises")
+    if not e.sampler_for and {c.kind for c in e.checks} != {"properties"}
+]
 SAMPLERS = [e for e in find_exercises(ROOT / "exercises") if e.sampler_for]
 
 
