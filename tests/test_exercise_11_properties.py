@@ -222,7 +222,7 @@ def test_a_brdf_of_the_students_own_is_refused(tmp_path):
     path = tmp_path / EXERCISE.student_file
     code = EXERCISE.solution.read_text(encoding="utf-8")
     own = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(0.5); }\n"
-    for text in (code, code.replace("// @include terms/brdf_prototype.glsl\n", "")):
+    for text in (code, code.replace("// @include terms/brdf_stand_in.glsl\n", "")):
         path.write_text(text + own, encoding="utf-8")
         line = len(text.splitlines()) + 1
         error = prepare(EXERCISE, path).error

@@ -1,7 +1,7 @@
 // Exercise 11: BRDF properties as code. Two tests of whatever BRDF(L, V, N, X, Y) the
 // grader links in (a library model, or one broken on purpose), which this file calls but
 // does not define. Directions are unit vectors in the frame X, Y, N the grader passes.
-// @include terms/brdf_prototype.glsl
+// @include terms/brdf_stand_in.glsl
 
 const int N_THETA = 64;   // the midpoint rule's steps in theta over [0, pi/2]
 const int N_PHI = 256;    // and in phi over [0, 2 pi)

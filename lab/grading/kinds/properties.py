@@ -50,13 +50,12 @@ def target_model(target: str) -> Model:
 
 
 def linked(student: Model, target: Model) -> Model:
-    """The student's tests with the target's BRDF after them (a prototype on the first line
+    """The student's tests with the target's BRDF after them (its prototype on the first line
     keeps the file's own line numbers), its parameters and included terms."""
     code = PROTOTYPE + student.code.rstrip("\n") + "\n" + target.code
-    includes = list(dict.fromkeys([*student.includes, *target.includes]))
-    return replace(
-        target, path=student.path, code=code, includes=includes, loop_limit=student.loop_limit
-    )
+    # The target's includes only: the stub's terms/brdf_stand_in.glsl defines a BRDF for
+    # tools that compile the test alone, which the target's replaces here.
+    return replace(target, path=student.path, code=code, loop_limit=student.loop_limit)
 
 
 def _from_target(err: ShaderCompileError, student: Model, target: Model) -> ShaderCompileError:

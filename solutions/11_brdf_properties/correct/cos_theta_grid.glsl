@@ -1,6 +1,6 @@
 // Correct: the midpoint rule in (cos theta, phi) instead of (theta, phi). With u = cos theta
 // the solid angle is du dphi, so no sin(theta) appears; the integrand is f(L, V) u.
-// @include terms/brdf_prototype.glsl
+// @include terms/brdf_stand_in.glsl
 
 const int N_U = 64;
 const int N_PHI = 256;

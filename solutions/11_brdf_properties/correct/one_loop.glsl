@@ -1,6 +1,6 @@
 // Correct: the handout's midpoint rule in one loop over all cells, with the cell's weight
 // in a helper and the per-channel maximum written out.
-// @include terms/brdf_prototype.glsl
+// @include terms/brdf_stand_in.glsl
 
 const int N_THETA = 64;
 const int N_PHI = 256;
