@@ -4,8 +4,8 @@ A kind owns everything about its checks, in five parts:
 
 - inputs: the keys of its `[[checks]]` table in exercise.toml (`parse`, `fields`; every
   kind also reads `ranges`, the parameter ranges hidden mode draws from, and `purpose`,
-  what its lights are for: spec.PURPOSES, see `purpose_of`) and the direction pairs it
-  evaluates (`angles`);
+  what its lights are for: spec.PURPOSES, see `purpose_of`), the direction pairs it
+  evaluates (`angles`) and the model hidden mode draws its parameters from (`params_model`);
 - render: what it renders from a model (`render`), stored as (`stored`), and where a
   stopped loop was (`where`);
 - compare: the verdict against the reference, with tolerance and message (`compare`,
