@@ -199,7 +199,7 @@ def test_every_held_out_wrong_submission_loses_points_and_no_correct_one_does(gr
         if key[0] != "batch":
             continue
         label = key[1]
-        if label.startswith("wrong/"):
+        if label.startswith(("wrong/", "heldout/")):
             assert task.score < task.max_score, key
         elif label != "stub":
             assert task.score == task.max_score, (key, [r.message for r in task.checks()])

@@ -1,5 +1,6 @@
-// WRONG: theta measured from the horizon: sin and cos swapped in L
-// HINT: frame
+// Correct (written as a wrong submission, held out, and found right by the grader): theta
+// measured from the horizon, sin and cos swapped in L. The weight cos(theta) sin(theta) is
+// symmetric under theta -> pi/2 - theta, and so is the midpoint grid: the same sum.
 // Exercise 11: BRDF properties as code. Two tests of whatever BRDF(L, V, N, X, Y) the
 // grader links in (a library model, or one broken on purpose), which this file calls but
 // does not define. Directions are unit vectors in the frame X, Y, N the grader passes.
