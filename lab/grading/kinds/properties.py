@@ -307,7 +307,20 @@ class PropertiesKind(CheckKind):
             tol = check.atol + check.rtol * np.abs(real)
             if len(part) > 1 and np.ptp(part) == 0.0 and np.ptp(real) > tol.max():
                 said.append(f"your {what} gives the same value, {part[0]:.4g}, for every input")
-        if not said:
+        if not said:  # values the definitions rule out: an error in [0, 1], an albedo >= 0
+            errors = np.nan_to_num(mine[n:])
+            if (errors < -1e-6).any():
+                return (
+                    "your reciprocity_error is negative at some pairs: the difference "
+                    "|f(L, V) − f(V, L)| needs its absolute value"
+                )
+            if (errors > 1.0 + 1e-4).any():
+                return (
+                    f"your reciprocity_error reaches {errors.max():.3g}, above 1: relative to the "
+                    "larger of f(L, V) and f(V, L) the difference is at most 1"
+                )
+            if (np.nan_to_num(mine[:n]) < -1e-6).any():
+                return "your directional_albedo is negative at some views: f_r cos θL is not"
             return ""
         return "; ".join(said) + (
             ": a test must measure the BRDF linked with it (call BRDF(L, V, N, X, Y)), "
