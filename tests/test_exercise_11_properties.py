@@ -244,3 +244,23 @@ def test_a_clash_with_the_linked_model_is_reported_in_the_models_file(grader, tm
     assert "rename your function" in result.errors[0]
     lambert = next(c for c in EXERCISE.checks if c.name == "lambert")  # no clash there
     assert grader.grade(EXERCISE, lambert, reading.model, reading.code, None).passed
+
+
+def test_values_the_definitions_rule_out_are_named(grader):
+    """Without a stored mistake to match: a constant test, a negative or above-1 reciprocity
+    error and a negative albedo are each said in words; right-looking values say nothing."""
+    check = next(c for c in EXERCISE.checks if c.name == "cosine_inside")
+    kind = kind_of(check)
+    target = P.target_model(check.options["target"])
+    truth = kind.truth(grader.renderer, target, check)
+    n = kind.albedo_count(check)
+
+    def said(mine):
+        return kind.explain(None, EXERCISE, check, None, None, np.stack([mine, truth]), False)
+
+    assert said(truth) == ""
+    constant = np.concatenate([np.ones(n), np.zeros(len(truth) - n)])
+    assert "same value, 0, for every input" in said(constant)
+    assert "negative at some pairs" in said(np.concatenate([truth[:n], -truth[n:]]))
+    assert "above 1" in said(np.concatenate([truth[:n], 3.0 * truth[n:] + 0.5]))
+    assert "albedo is negative" in said(np.concatenate([-truth[:n], truth[n:]]))
