@@ -9,7 +9,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from lab.grading import schema
+from lab.grading import kinds, schema
 from lab.grading.spec import ExerciseError
 from lab.models import ModelError, Param, load_model, parse_model
 
@@ -71,6 +71,8 @@ def check_params(exercise, spec: dict, where: str, lines) -> None:
     for index, check in enumerate(exercise.checks):
         raw = spec["checks"][index]
         groups = sum(check.same, ())
+        own = kinds.kind_of(check).params_model(check, None)  # a kind's own model (11's target)
+        header = own.params if own is not None else header_params(exercise)
         for key, names in (("params", check.params), ("ranges", check.ranges), ("same", groups)):
             line = lines.line(*(("checks", index) if key in raw else ("defaults", 0)), key)
             schema.check_param_names(names, header, where, line, f"check {check.name}: {key}")

@@ -134,16 +134,26 @@ CHECK: tuple[Key, ...] = (
     Key("ranges", "ranges", {}, "hidden mode draws these parameters within [low, high]"),
     Key("purpose", "purpose", None, "what each light is for; hidden mode draws within it"),
     Key("same", "same", [], "parameter groups hidden mode draws one value for (isotropy)"),
-    Key("pairs", "integer", 256, "random direction pairs (plus 18 special ones)", ("probe",)),
+    Key(
+        "pairs",
+        "integer",
+        256,
+        "random direction pairs (probe: plus 18 special ones)",
+        ("probe", "properties"),
+    ),
     Key(
         "seed",
         "integer",
         1,
         "fixes the random directions or samples",
-        ("probe", "chi_square", "pdf_integral", "ibl_render"),
+        ("probe", "chi_square", "pdf_integral", "ibl_render", "properties"),
     ),
-    Key("rtol", "number", 2e-3, "relative tolerance of each value", ("probe", "polar")),
-    Key("atol", "number", 1e-4, "absolute tolerance of each value", ("probe", "polar")),
+    Key(
+        "rtol", "number", 2e-3, "relative tolerance of each value", ("probe", "polar", "properties")
+    ),
+    Key(
+        "atol", "number", 1e-4, "absolute tolerance of each value", ("probe", "polar", "properties")
+    ),
     Key(
         "theta_i",
         "number",
@@ -179,6 +189,9 @@ FIELD_MEANINGS: dict[tuple[str, str], str] = {
     ("ibl_render", "environment"): "the procedural environment map lit with",
     ("ibl_render", "factor"): "how much noisier than the solution the render may be (>= 1)",
     ("ibl_render", "alpha"): "significance of the noise test (0 to 0.1)",
+    ("properties", "target"): "the model tested: a library model or a .glsl file in the folder",
+    ("properties", "albedo_rows"): "viewing angles directional_albedo is run at (1 to 64)",
+    ("properties", "grazing_rows"): "how many of them lie between 80 and 88 degrees",
 }
 
 MISTAKE: tuple[Key, ...] = (
