@@ -23,6 +23,7 @@ LAYERS = {  # module -> layer; a feature package's modules default to the top la
     "lab.reference": 0,
     "lab.bootstrap": 0,
     "lab.plotscale": 0,
+    "lab.describe": 0,
     "lab.nonfinite": 0,
     "lab.measured": 0,
     "lab.measured.sh": 0,
