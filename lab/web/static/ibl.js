@@ -192,7 +192,7 @@ export class IblView {
   }
 
   schedule() {
-    if (!this.pending && this.samples < MAX_SAMPLES) this.pending = requestAnimationFrame(this.tick);
+    if (!this.pending && this.samples < MAX_SAMPLES && !this.root.classList.contains("paused")) this.pending = requestAnimationFrame(this.tick);
   }
 
   tick() {

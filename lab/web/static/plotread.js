@@ -1,0 +1,173 @@
+// Owns: the polar plots read without sight. Each plot canvas gets role="img" and a
+// description (describe.js) once a change settles, a "table" toggle with its sampled values
+// (CSV download) and a keyboard cursor that walks the curve and says its value. It reads the
+// page's state (brdfLab.state) and attaches by DOM; lab.js knows nothing of it.
+import { csvText, cursor, describe, table } from "./describe.js";
+
+const SETTLE_MS = 400;
+
+/** The lobes a plot shows, as describe.js takes them. */
+function lobesOf(lab, C, panels) {
+  const names = panels.map((p) => p.name);
+  return panels.filter((p) => p.lobe && p.model).map((p) => {
+    const values = [];
+    const thetaO = [];
+    for (let i = 0; i < 181; i++) {
+      let f = C.LUMA[0] * p.lobe[4 * i] + C.LUMA[1] * p.lobe[4 * i + 1] + C.LUMA[2] * p.lobe[4 * i + 2];
+      if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
+      values.push(Number.isFinite(f) ? Math.max(f, 0) : 0);
+      thetaO.push(i - 90);
+    }
+    const k = lab.panels.indexOf(p);
+    const name = names.filter((n) => n === p.name).length > 1 ? `${p.name} (model ${k + 1})` : p.name;
+    const spike = p.spike ? C.LUMA[0] * p.spike[0] + C.LUMA[1] * p.spike[1] + C.LUMA[2] * p.spike[2] : null;
+    return { name, thetaO, values, spike };
+  });
+}
+
+const what = (lab) => (lab.cosWeighted ? "f_r cos θo" : "f_r");
+
+/** Reading aids under one plot canvas: table toggle, CSV, cursor readout. */
+class PlotReader {
+  constructor(canvas, panels, lab, C, el) {
+    Object.assign(this, { canvas, panels, lab, C, el });
+    this.theta = null; // the cursor's θo (null: not placed yet)
+    canvas.setAttribute("role", "img");
+    canvas.tabIndex = 0;
+    const id = `plot-${PlotReader.count = (PlotReader.count || 0) + 1}`;
+    this.readout = el("p", { class: "plot-cursor", id: `${id}-cursor`, "aria-live": "polite" });
+    this.tableBox = el("div", { class: "plot-table", id: `${id}-table`, hidden: "" });
+    this.toggle = el("button", { type: "button", class: "plot-table-toggle", "aria-expanded": "false",
+      "aria-controls": this.tableBox.id }, "table");
+    this.toggle.addEventListener("click", () => this.showTable(this.tableBox.hidden));
+    this.csv = el("button", { type: "button", class: "plot-csv" }, "CSV");
+    this.csv.addEventListener("click", () => this.download());
+    this.tools = el("div", { class: "plot-read" }, this.toggle, this.csv, this.readout);
+    canvas.closest(".view").after(this.tools, this.tableBox);
+    canvas.setAttribute("aria-describedby", this.readout.id);
+    canvas.addEventListener("keydown", (e) => this.key(e));
+    this.marker = el("canvas", { class: "plot-marker", "aria-hidden": "true" });
+    canvas.after(this.marker);
+  }
+
+  lobes() {
+    return lobesOf(this.lab, this.C, this.panels());
+  }
+
+  /** The description as the canvas's name; the table again if it is open. */
+  refresh() {
+    const lobes = this.lobes();
+    const lab = this.lab;
+    if (!lobes.length) return;
+    const plane = lab.phiO ? `In the plane turned φo ${lab.phiO}° from the plane of incidence: ` : "";
+    const text = describe(lobes, lab.lights[0].theta, what(lab), this.C.GRAZING_DEG);
+    this.canvas.setAttribute("aria-label", `Polar plot. ${plane}${text}`);
+    this.canvas.dataset.description = text;
+    this.csv.setAttribute("aria-label", `download the values of this plot (${lobes.map((l) => l.name).join(", ")}) as CSV`);
+    if (!this.tableBox.hidden) this.showTable(true);
+    if (this.theta !== null) this.drawMarker();
+  }
+
+  rows() {
+    return table(this.lobes(), this.lab.lights[0].theta, this.C.GRAZING_DEG);
+  }
+
+  showTable(open) {
+    this.tableBox.hidden = !open;
+    this.toggle.setAttribute("aria-expanded", String(open));
+    if (!open) return;
+    const { el } = this;
+    const [header, ...rows] = this.rows();
+    this.tableBox.replaceChildren(el("table", {},
+      el("caption", {}, `${what(this.lab)} (sr⁻¹, luminance) every 5° of θo; θi ${this.lab.lights[0].theta}°`),
+      el("thead", {}, el("tr", {}, ...header.map((h) => el("th", { scope: "col" }, h)))),
+      el("tbody", {}, ...rows.map((r) => el("tr", r[r.length - 1] ? { class: "marked" } : {},
+        el("th", { scope: "row" }, `${r[0]}°`.replace("-", "−")), ...r.slice(1).map((c) => el("td", {}, c)))))));
+  }
+
+  download() {
+    const blob = new Blob([csvText(this.rows())], { type: "text/csv" });
+    const a = this.el("a", { href: URL.createObjectURL(blob), download: `${this.lobes().map((l) => l.name).join("_")}_polar.csv` });
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  }
+
+  /** Arrows walk θo as drawn (negative angles, toward the light, on the right). */
+  key(e) {
+    const lobes = this.lobes();
+    if (!lobes.length) return;
+    const steps = { ArrowLeft: 1, ArrowRight: -1, ArrowUp: 1, ArrowDown: -1, PageUp: 10, PageDown: -10 };
+    const thetaI = this.lab.lights[0].theta;
+    let theta = this.theta ?? Math.round(thetaI);
+    if (e.key in steps) theta += steps[e.key];
+    else if (e.key === "Home") theta = -90;
+    else if (e.key === "End") theta = 90;
+    else if (e.key === "m") theta = Math.round(thetaI);
+    else return;
+    e.preventDefault();
+    e.stopPropagation(); // in a slide the arrows move the cursor, not the deck
+    this.theta = Math.min(Math.max(theta, -90), 90);
+    this.say(lobes);
+  }
+
+  say(lobes) {
+    const parts = lobes.map((l) => (lobes.length > 1 ? `${l.name}: ` : "") +
+      cursor(l, this.theta, what(this.lab), this.C.GRAZING_DEG).replace(/^θo [^,]*, /, ""));
+    const at = `${this.theta}°`.replace("-", "−");
+    this.readout.textContent = lobes.length > 1 ? `θo ${at}; ${parts.join("; ")}` : `θo ${at}, ${parts[0]}`;
+    this.drawMarker();
+  }
+
+  /** A ray at the cursor's θo over the plot (the plot itself is lab.js's). */
+  drawMarker() {
+    const c = this.canvas;
+    const m = this.marker;
+    m.width = c.width;
+    m.height = c.height;
+    Object.assign(m.style, { left: `${c.offsetLeft}px`, top: `${c.offsetTop}px`, width: `${c.offsetWidth}px`,
+      height: `${c.offsetHeight}px` });
+    const ctx = m.getContext("2d");
+    ctx.clearRect(0, 0, m.width, m.height);
+    const geometry = c.classList.contains("polar") ? this.panels()[0]?.polarGeometry : this.lab.overlayGeometry;
+    if (!geometry?.centre || this.theta === null || this.lab.plot === "theta") return;
+    const [cx, cy] = geometry.centre;
+    const a = (this.theta * Math.PI) / 180;
+    ctx.strokeStyle = "#ffffff";
+    ctx.lineWidth = 2;
+    ctx.setLineDash([6, 3]);
+    ctx.beginPath();
+    ctx.moveTo(cx, cy);
+    ctx.lineTo(cx - geometry.radius * Math.sin(a), cy - geometry.radius * Math.cos(a));
+    ctx.stroke();
+  }
+}
+
+/** Attaches readers to every polar plot (again as panels come and go); refreshes them once
+ * a change settles. Returns { refresh } for tests. */
+export function readPlots(lab, C, el) {
+  const readers = new Map(); // canvas -> PlotReader
+  const attach = () => {
+    for (const panel of lab.panels) {
+      if (panel.polar && !readers.has(panel.polar) && panel.polar.closest(".view")) {
+        readers.set(panel.polar, new PlotReader(panel.polar, () => [panel], lab, C, el));
+      }
+    }
+    const overlay = document.querySelector("#overlay canvas");
+    if (overlay && !readers.has(overlay)) readers.set(overlay, new PlotReader(overlay, () => lab.panels, lab, C, el));
+    for (const canvas of readers.keys()) if (!canvas.isConnected && canvas !== overlay) readers.delete(canvas);
+  };
+  const refresh = () => {
+    attach();
+    for (const reader of readers.values()) reader.refresh();
+  };
+  let timer = 0;
+  const soon = () => {
+    clearTimeout(timer);
+    timer = setTimeout(refresh, SETTLE_MS);
+  };
+  for (const type of ["input", "change", "pointerup", "keyup", "hashchange", "click"]) addEventListener(type, soon, true);
+  refresh();
+  return { refresh, readers };
+}
