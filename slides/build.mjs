@@ -38,7 +38,8 @@ function splitSlides(text) {
 
 function typeset(tex, display, line) {
   try {
-    return katex.renderToString(tex, { displayMode: display, throwOnError: true, output: "html" });
+    // MathML beside the HTML: screen readers read the MathML, eyes see the HTML.
+    return katex.renderToString(tex, { displayMode: display, throwOnError: true, output: "htmlAndMathml" });
   } catch (err) {
     fail(line, `the equation ${JSON.stringify(tex.slice(0, 40))} does not typeset: ${err.message}`);
   }
@@ -103,6 +104,7 @@ lib("reveal.js/dist", "reveal");
 lib("katex/dist/katex.min.css", "katex/katex.min.css");
 lib("katex/dist/fonts", "katex/fonts");
 cpSync(join(HERE, "deck.css"), join(outdir, "deck.css"));
+cpSync(join(HERE, "deck-a11y.js"), join(outdir, "deck-a11y.js"));
 
 writeFileSync(join(outdir, "index.html"), `<!doctype html>
 <html lang="en">
@@ -122,9 +124,11 @@ writeFileSync(join(outdir, "index.html"), `<!doctype html>
 ${sections.join("\n")}
 </div></div>
 <script src="lib/reveal/reveal.js"></script>
+<script src="deck-a11y.js"></script>
 <script>
   Reveal.initialize({ hash: true, width: 1280, height: 800, margin: 0.03, center: false,
-    transition: "none", viewDistance: 2, pdfMaxPagesPerSlide: 1 });
+    transition: "none", viewDistance: 2, pdfMaxPagesPerSlide: 1, keyboard: deckA11y.keyboard() });
+  deckA11y.attach(Reveal);
   // A live demo keeps the keyboard focus after a click; it passes the slide keys up here.
   addEventListener("message", (e) => {
     const demo = [...document.querySelectorAll("iframe.demo, iframe.ibl-demo")].some((f) => f.contentWindow === e.source);

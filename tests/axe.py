@@ -92,14 +92,16 @@ def deck_states(browser, url: str):
     for index in range(count):
         page.evaluate("i => Reveal.slide(i)", index)
         frame = None
-        handle = page.query_selector(".present iframe.demo")
+        handle = page.query_selector(".present iframe.demo, .present iframe.ibl-demo")
         if handle is not None:
             page.wait_for_function(
-                "() => { const f = document.querySelector('.present iframe.demo');"
-                " return f && f.contentWindow && f.contentWindow.brdfLab &&"
-                " f.contentWindow.brdfLab.state.firstRenderMs !== null; }",
+                "() => { const f = document.querySelector('.present iframe');"
+                " const w = f && f.contentWindow;"
+                " return w && w.document.readyState === 'complete' && (f.classList.contains('ibl-demo')"
+                " || (w.brdfLab && w.brdfLab.state.firstRenderMs !== null)); }",
                 timeout=60_000,
             )
+            page.wait_for_timeout(500)  # the page's accessibility module attaches after a frame
             frame = handle.content_frame()
         yield f"slide {index + 1}", page, frame
     page.close()
