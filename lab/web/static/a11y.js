@@ -141,6 +141,16 @@ function orbitKeys(lab) {
   }, true);
 }
 
+/** In a slide, the key that operates the focused control stays with it (Space ticks a box,
+ * it does not turn the slide). */
+function keysStayInControls() {
+  addEventListener("keydown", (e) => {
+    const t = e.target;
+    if (window.parent === window || !(t instanceof HTMLInputElement)) return;
+    if (e.key === " " && (t.type === "checkbox" || t.type === "radio" || t.type === "color")) e.stopPropagation();
+  }, true);
+}
+
 /** Preset and exercise lists change on Enter, not on each arrow key. */
 function enterToOpen() {
   const lists = new Set(["preset", "exercise-pick"]);
@@ -259,6 +269,7 @@ function setUp() {
   addEventListener("hashchange", () => setTimeout(speakAll, 300));
   orbitKeys(lab);
   enterToOpen();
+  keysStayInControls();
   focusTips();
   update();
   speakAll();
