@@ -120,7 +120,8 @@ const roundStep = (x, step) => pyRound(x / step) * step;
 export function table(lobes, thetaI, grazingDeg, step = TABLE_STEP) {
   const rows = [["θo (deg)", ...lobes.map((l) => l.name), "mark"]];
   const summaries = lobes.map((l) => summarise(l, grazingDeg));
-  const peaks = summaries.map((s) => roundStep(s.peakTheta, step));
+  // Only a lobe has a peak to mark (a constant's largest value is noise at its edge).
+  const peaks = summaries.map((s) => (s.halfWidth !== null ? roundStep(s.peakTheta, step) : null));
   const mirror = roundStep(thetaI, step);
   for (let theta = -90; theta <= 90; theta += step) {
     const cells = [String(theta)];
@@ -128,7 +129,7 @@ export function table(lobes, thetaI, grazingDeg, step = TABLE_STEP) {
       const v = lobe.values[nearest(lobe, theta)];
       cells.push(fmt(Number.isNaN(v) ? 0 : Math.max(v, 0)));
     }
-    const marks = lobes.filter((l, i) => peaks[i] === theta && summaries[i].peak > 0).map((l) => `peak ${l.name}`);
+    const marks = lobes.filter((l, i) => peaks[i] === theta).map((l) => `peak ${l.name}`);
     if (theta === mirror) marks.push("mirror");
     cells.push(marks.join(", "));
     rows.push(cells);

@@ -24,7 +24,7 @@ const SPHERE_FAST_MIN = 384; // spheres this large draw at half resolution while
 // on the views after it (the 3D lobe's picture comes last: its mesh is a second round).
 const FRAME_ORDER = ["terms", "sh", "lobe3d", "slice", "albedo", "object"];
 // One colour per panel, in every view that overlays models (the desktop's first colours).
-const PALETTE = ["#4aa3ff", "#e6194b", "#3cb44b", "#ffe119", "#f58231", "#911eb4"];
+const PALETTE = ["#56b4e9", "#e69f00", "#009e73", "#f0e442", "#cc79a7", "#d55e00"]; // Okabe-Ito: apart under colour blindness (tests/test_a11y_colour.py)
 // Page settings beyond the lights, with their defaults (the desktop's, lab/presets.py).
 // The 3D lobe's camera and the harmonics' order as the desktop's (lab/views/lobe3d.py, sh.py).
 const SETTINGS = { phiD: 90, shape: 0, mode: 1, yaw: 0.6, pitch: 0.5, polarLog: false, phiO: 0,
@@ -754,7 +754,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   const rings = lab.polarLog
     ? Array.from({ length: C.PLOT_DECADES }, (_, k) => [(C.PLOT_DECADES - k) / C.PLOT_DECADES, scale * Math.pow(10, -k)])
     : [0.25, 0.5, 0.75, 1].map((r) => [r, r * scale]);
-  ctx.strokeStyle = "#8888";
+  ctx.strokeStyle = "#80848e"; // axes and rings at 3:1 or more against the panel (WCAG 1.4.11)
   ctx.beginPath();
   ctx.moveTo(cx - radius, cy);
   ctx.lineTo(cx + radius, cy);
@@ -774,7 +774,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   let end = w - 2;
   const ringLabels = []; // [text, left, top, right, bottom] of each value drawn
   for (const [r, value] of [...rings].sort((a, b) => b[0] - a[0])) {
-    ctx.strokeStyle = r === 1 ? "#8888" : "#5556";
+    ctx.strokeStyle = r === 1 ? "#80848e" : "#6c7280";
     ctx.beginPath();
     ctx.arc(cx, cy, radius * r, Math.PI, 2 * Math.PI);
     ctx.stroke();
@@ -821,7 +821,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   const inPlane = lab.phiO === 0;
   if (inPlane) {
     ray(-thetaI, radius, "#e0a030", []); // toward the light
-    ray(thetaI, radius, "#8888", [4, 4]); // mirror direction
+    ray(thetaI, radius, "#80848e", [4, 4]); // mirror direction
   }
   // Near normal incidence L and R sit on N: one merged label instead of three on top of
   // each other; a little further out, L and R pushed apart either side.

@@ -2,7 +2,7 @@
 // description (describe.js) once a change settles, a "table" toggle with its sampled values
 // (CSV download) and a keyboard cursor that walks the curve and says its value. It reads the
 // page's state (brdfLab.state) and attaches by DOM; lab.js knows nothing of it.
-import { csvText, cursor, describe, table } from "./describe.js";
+import { csvText, cursor, describe, summarise, table } from "./describe.js";
 
 const SETTLE_MS = 400;
 
@@ -65,7 +65,7 @@ class PlotReader {
     this.canvas.dataset.description = text;
     this.csv.setAttribute("aria-label", `download the values of this plot (${lobes.map((l) => l.name).join(", ")}) as CSV`);
     if (!this.tableBox.hidden) this.showTable(true);
-    if (this.theta !== null) this.drawMarker();
+    this.drawMarker();
   }
 
   rows() {
@@ -120,7 +120,8 @@ class PlotReader {
     this.drawMarker();
   }
 
-  /** A ray at the cursor's θo over the plot (the plot itself is lab.js's). */
+  /** Over lab.js's plot: with several models a marker shape per model along its curve and
+   * its name at its peak (colour is not the only cue); the cursor's ray. */
   drawMarker() {
     const c = this.canvas;
     const m = this.marker;
@@ -130,18 +131,78 @@ class PlotReader {
       height: `${c.offsetHeight}px` });
     const ctx = m.getContext("2d");
     ctx.clearRect(0, 0, m.width, m.height);
-    const geometry = c.classList.contains("polar") ? this.panels()[0]?.polarGeometry : this.lab.overlayGeometry;
-    if (!geometry?.centre || this.theta === null || this.lab.plot === "theta") return;
+    const overlay = !c.classList.contains("polar");
+    const geometry = overlay ? this.lab.overlayGeometry : this.panels()[0]?.polarGeometry;
+    if (!geometry?.centre || this.lab.plot === "theta" || !geometry.scale) return;
     const [cx, cy] = geometry.centre;
-    const a = (this.theta * Math.PI) / 180;
+    const at = (theta, r) => {
+      const a = (theta * Math.PI) / 180;
+      return [cx - r * Math.sin(a), cy - r * Math.cos(a)];
+    };
+    const radiusOf = (f) => {
+      const floor = geometry.scale * Math.pow(10, -this.C.PLOT_DECADES);
+      const r = this.lab.polarLog ? Math.log10(Math.max(f, floor) / floor) / this.C.PLOT_DECADES : f / geometry.scale;
+      return geometry.radius * Math.min(Math.max(r, 0), 1);
+    };
+    const panels = this.panels().filter((p) => p.lobe && p.model);
+    const lobes = this.lobes();
+    if (overlay && lobes.length > 1) {
+      const font = Math.max(11, Math.round(c.width / 30));
+      ctx.font = `${font}px system-ui, sans-serif`;
+      ctx.lineWidth = 1.5;
+      lobes.forEach((lobe, k) => {
+        const color = panels[k]?.color || "#ffffff";
+        for (let t = -80; t <= 80; t += 20) {
+          const r = radiusOf(lobe.values[t + k * 3 + 90]);
+          if (r > 0.2 * geometry.radius) shape(ctx, k, ...at(t + k * 3, r), color); // not in the crowd at the centre
+        }
+        const s = summarise(lobe, this.C.GRAZING_DEG);
+        const peak = (s.halfWidth === null ? -45 : s.peakTheta) + 90; // a constant: its name at −45°
+        const [x, y] = at(peak - 90, radiusOf(lobe.values[peak]));
+        shape(ctx, k, x, y, color, 7);
+        const text = lobe.name;
+        const w = ctx.measureText(text).width;
+        const left = Math.min(Math.max(x + 8, 2), m.width - w - 2);
+        const top = Math.max(y - 6 - k * (font + 2), font);
+        ctx.fillStyle = "#15171ccc";
+        ctx.fillRect(left - 2, top - font, w + 4, font + 4);
+        ctx.fillStyle = color;
+        ctx.fillText(text, left, top);
+      });
+    }
+    if (this.theta === null) return;
     ctx.strokeStyle = "#ffffff";
     ctx.lineWidth = 2;
     ctx.setLineDash([6, 3]);
     ctx.beginPath();
     ctx.moveTo(cx, cy);
-    ctx.lineTo(cx - geometry.radius * Math.sin(a), cy - geometry.radius * Math.cos(a));
+    ctx.lineTo(...at(this.theta, geometry.radius));
     ctx.stroke();
+    ctx.setLineDash([]);
   }
+}
+
+/** Marker k (circle, square, triangle, diamond, cross, star) at (x, y), outlined dark. */
+function shape(ctx, k, x, y, color, size = 4.5) {
+  ctx.beginPath();
+  const s = size;
+  switch (k % 6) {
+    case 0: ctx.arc(x, y, s, 0, 2 * Math.PI); break;
+    case 1: ctx.rect(x - s, y - s, 2 * s, 2 * s); break;
+    case 2: ctx.moveTo(x, y - s * 1.2); ctx.lineTo(x + s, y + s); ctx.lineTo(x - s, y + s); ctx.closePath(); break;
+    case 3: ctx.moveTo(x, y - s * 1.3); ctx.lineTo(x + s, y); ctx.lineTo(x, y + s * 1.3); ctx.lineTo(x - s, y); ctx.closePath(); break;
+    case 4: ctx.rect(x - s, y - s / 3, 2 * s, (2 * s) / 3); ctx.rect(x - s / 3, y - s, (2 * s) / 3, 2 * s); break;
+    default: for (let i = 0; i < 10; i++) {
+      const r = i % 2 ? s / 2 : s * 1.2;
+      const a = (i * Math.PI) / 5;
+      ctx[i ? "lineTo" : "moveTo"](x + r * Math.sin(a), y - r * Math.cos(a));
+    }
+    ctx.closePath();
+  }
+  ctx.fillStyle = color;
+  ctx.strokeStyle = "#15171c";
+  ctx.fill();
+  ctx.stroke();
 }
 
 /** Attaches readers to every polar plot (again as panels come and go); refreshes them once
