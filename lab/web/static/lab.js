@@ -749,12 +749,12 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   const radius = Math.max(rowBelow ? below : beside, 8);
   ctx.clearRect(0, 0, w, h);
   ctx.font = `${font}px system-ui, sans-serif`;
-  ctx.lineWidth = 1;
+  ctx.lineWidth = 1.5; // a thinner line's antialiased pixels fall under 3:1
   // Rings: quarters of the scale, or one per decade on the log scale; values beside them.
   const rings = lab.polarLog
     ? Array.from({ length: C.PLOT_DECADES }, (_, k) => [(C.PLOT_DECADES - k) / C.PLOT_DECADES, scale * Math.pow(10, -k)])
     : [0.25, 0.5, 0.75, 1].map((r) => [r, r * scale]);
-  ctx.strokeStyle = "#80848e"; // axes and rings at 3:1 or more against the panel (WCAG 1.4.11)
+  ctx.strokeStyle = "#a0a6b0"; // axes and rings at 3:1 or more against the panel, antialiased (WCAG 1.4.11)
   ctx.beginPath();
   ctx.moveTo(cx - radius, cy);
   ctx.lineTo(cx + radius, cy);
@@ -774,7 +774,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   let end = w - 2;
   const ringLabels = []; // [text, left, top, right, bottom] of each value drawn
   for (const [r, value] of [...rings].sort((a, b) => b[0] - a[0])) {
-    ctx.strokeStyle = r === 1 ? "#80848e" : "#6c7280";
+    ctx.strokeStyle = r === 1 ? "#a0a6b0" : "#8a909c";
     ctx.beginPath();
     ctx.arc(cx, cy, radius * r, Math.PI, 2 * Math.PI);
     ctx.stroke();
@@ -821,7 +821,7 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   const inPlane = lab.phiO === 0;
   if (inPlane) {
     ray(-thetaI, radius, "#e0a030", []); // toward the light
-    ray(thetaI, radius, "#80848e", [4, 4]); // mirror direction
+    ray(thetaI, radius, "#a0a6b0", [4, 4]); // mirror direction
   }
   // Near normal incidence L and R sit on N: one merged label instead of three on top of
   // each other; a little further out, L and R pushed apart either side.
