@@ -109,7 +109,9 @@ def sentence(lobe: Lobe, theta_i: float, what: str = "f_r") -> str:
     s = summarise(lobe)
     parts = []
     if lobe.spike is not None:
-        parts.append(f"a δ spike at θo {deg(theta_i)}, the mirror direction, reflectance {fmt(lobe.spike)}")
+        parts.append(
+            f"a δ spike at θo {deg(theta_i)}, the mirror direction, reflectance {fmt(lobe.spike)}"
+        )
     if s.peak <= 0:
         parts.append(f"{what} is 0 in this plane")
     elif s.half_width is None:
@@ -147,19 +149,22 @@ def describe(lobes: Sequence[Lobe], theta_i: float, what: str = "f_r") -> str:
 
 def table(lobes: Sequence[Lobe], theta_i: float, step: int = TABLE_STEP) -> list[list[str]]:
     """Rows [θo, one value per lobe, mark] every `step` degrees; the header row first.
-    The row nearest each lobe's peak is marked 'peak NAME' (not for a constant), θo = θi 'mirror'."""
+    The row nearest each lobe's peak is marked 'peak NAME' (not for a constant), θo = θi
+    'mirror'."""
     header = ["θo (deg)", *[lobe.name for lobe in lobes], "mark"]
     rows = [header]
     # Only a lobe has a peak to mark (a constant's largest value is noise at its edge).
     summaries = [summarise(lobe) for lobe in lobes]
-    peaks = [round(s.peak_theta / step) * step if s.half_width is not None else None for s in summaries]
+    peaks = [
+        round(s.peak_theta / step) * step if s.half_width is not None else None for s in summaries
+    ]
     mirror = round(theta_i / step) * step
     for theta in range(-90, 91, step):
         cells = [str(theta)]
         for lobe in lobes:
             k = int(np.argmin(np.abs(np.asarray(lobe.theta_o) - theta)))
             cells.append(fmt(max(float(np.nan_to_num(lobe.values[k], posinf=math.inf)), 0.0)))
-        marks = [f"peak {lobe.name}" for lobe, p in zip(lobes, peaks) if p == theta]
+        marks = [f"peak {lobe.name}" for lobe, p in zip(lobes, peaks, strict=True) if p == theta]
         if theta == mirror:
             marks.append("mirror")
         cells.append(", ".join(marks))

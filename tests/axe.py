@@ -97,7 +97,8 @@ def deck_states(browser, url: str):
             page.wait_for_function(
                 "() => { const f = document.querySelector('.present iframe');"
                 " const w = f && f.contentWindow;"
-                " return w && w.document.readyState === 'complete' && (f.classList.contains('ibl-demo')"
+                " return w && w.document.readyState === 'complete' &&"
+                " (f.classList.contains('ibl-demo')"
                 " || (w.brdfLab && w.brdfLab.state.firstRenderMs !== null)); }",
                 timeout=60_000,
             )
@@ -108,10 +109,10 @@ def deck_states(browser, url: str):
 
 
 def main(argv: list[str]) -> int:
+    import tempfile
+
     from lab.web.browser import chromium
     from lab.web.site import export, serving
-
-    import tempfile
 
     rows = []
     with tempfile.TemporaryDirectory() as tmp, chromium() as browser:
@@ -128,7 +129,9 @@ def main(argv: list[str]) -> int:
     print("| page | critical | serious | moderate | minor | rules |")
     print("|---|---|---|---|---|---|")
     for name, (impacts, rules) in rows:
-        counts = " | ".join(str(impacts.get(k, 0)) for k in ("critical", "serious", "moderate", "minor"))
+        counts = " | ".join(
+            str(impacts.get(k, 0)) for k in ("critical", "serious", "moderate", "minor")
+        )
         rule_text = ", ".join(f"{k} {n}" for k, n in sorted(rules.items())) or "-"
         print(f"| {name} | {counts} | {rule_text} |")
     return 0

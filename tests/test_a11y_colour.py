@@ -15,12 +15,28 @@ pytestmark = pytest.mark.skipif(chromium_path() is None, reason="needs Chromium"
 # Machado, Oliveira & Fernandes 2009, "A physiologically-based model for simulation of color
 # vision deficiency", severity 1.0, applied to linear RGB.
 DEFICIENCIES = {
-    "protanopia": [[0.152286, 1.052583, -0.204868], [0.114503, 0.786281, 0.099216], [-0.003882, -0.048116, 1.051998]],
-    "deuteranopia": [[0.367322, 0.860646, -0.227968], [0.280085, 0.672501, 0.047413], [-0.011820, 0.042940, 0.968881]],
-    "tritanopia": [[1.255528, -0.076749, -0.178779], [-0.078411, 0.930809, 0.147602], [0.004733, 0.691367, 0.303900]],
+    "protanopia": [
+        [0.152286, 1.052583, -0.204868],
+        [0.114503, 0.786281, 0.099216],
+        [-0.003882, -0.048116, 1.051998],
+    ],
+    "deuteranopia": [
+        [0.367322, 0.860646, -0.227968],
+        [0.280085, 0.672501, 0.047413],
+        [-0.011820, 0.042940, 0.968881],
+    ],
+    "tritanopia": [
+        [1.255528, -0.076749, -0.178779],
+        [-0.078411, 0.930809, 0.147602],
+        [0.004733, 0.691367, 0.303900],
+    ],
 }
-MIN_DELTA_E = 15.0  # CIE76 in CIELAB: the old palette had pairs at 7.9 (protanopia), 8.9 (deuteranopia)
-SRGB_TO_XYZ = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
+MIN_DELTA_E = (
+    15.0  # CIE76 in CIELAB: the old palette had pairs at 7.9 (protanopia), 8.9 (deuteranopia)
+)
+SRGB_TO_XYZ = np.array(
+    [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]
+)
 WHITE = np.array([0.95047, 1.0, 1.08883])
 
 
@@ -56,7 +72,9 @@ def test_old_palette_fails_the_measure():
 def page(tmp_path_factory):
     from tests.webpage import open_page
 
-    models = "&".join(f"model={m}" for m in ("phong", "blinn_phong", "cook_torrance", "ggx", "lambert", "ward"))
+    models = "&".join(
+        f"model={m}" for m in ("phong", "blinn_phong", "cook_torrance", "ggx", "lambert", "ward")
+    )
     with open_page(tmp_path_factory, models) as tab:
         yield tab
 
@@ -87,7 +105,8 @@ def test_polar_rings_at_three_to_one(page):
             let best = null;
             for (let dr = -2; dr <= 2; dr++) {
               const a = -70 * Math.PI / 180, rr = g.radius * r + dr;
-              const x = Math.round(g.centre[0] - rr * Math.sin(a)), y = Math.round(g.centre[1] - rr * Math.cos(a));
+              const x = Math.round(g.centre[0] - rr * Math.sin(a));
+              const y = Math.round(g.centre[1] - rr * Math.cos(a));
               const k = 4 * (y * c.width + x);
               if (!best || d[k + 3] > best[3]) best = [d[k], d[k + 1], d[k + 2], d[k + 3]];
             }

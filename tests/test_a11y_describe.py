@@ -33,7 +33,7 @@ def lobes(case):
 
 
 def eval_lobe(tmp_path: Path, model: str, params: dict, theta_i: float) -> np.ndarray:
-    """f_r luminance at theta_o = -90..90 (1 deg) from `brdf-lab eval` (the GLSL model on the GPU)."""
+    """f_r luminance at theta_o = -90..90 (1 deg) from `brdf-lab eval` (the GLSL model)."""
     from lab.cli import main
 
     rows = tmp_path / "angles.csv"
@@ -53,7 +53,9 @@ def eval_lobe(tmp_path: Path, model: str, params: dict, theta_i: float) -> np.nd
     return rgb @ np.asarray(LUMA)
 
 
-@pytest.mark.parametrize("model,params,theta_i", [("phong", {"ke": 20.0}, 45.0), ("ggx", {"alpha": 0.2}, 30.0)])
+@pytest.mark.parametrize(
+    "model,params,theta_i", [("phong", {"ke": 20.0}, 45.0), ("ggx", {"alpha": 0.2}, 30.0)]
+)
 def test_description_and_table_equal_brdf_lab_eval(tmp_path, model, params, theta_i):
     ours = describe.reference_lobe(model, params, theta_i)
     values = eval_lobe(tmp_path, model, params, theta_i)
@@ -66,7 +68,10 @@ def test_description_and_table_equal_brdf_lab_eval(tmp_path, model, params, thet
     assert s.peak == pytest.approx(values[np.abs(np.arange(-90, 91)) <= GRAZING_DEG].max())
     text = describe.describe([from_eval], theta_i)
     assert abs(s.peak_theta - theta_i) <= describe.NEAR_DEG
-    assert f"θo {describe.deg(s.peak_theta)}, the mirror direction, {describe.fmt(s.peak)} sr⁻¹" in text
+    assert (
+        f"θo {describe.deg(s.peak_theta)}, the mirror direction, {describe.fmt(s.peak)} sr⁻¹"
+        in text
+    )
 
 
 def test_half_width_and_floor_of_phong_in_closed_form():
@@ -103,7 +108,7 @@ def test_table_marks_peak_and_mirror_and_csv_reads_back():
 
 @pytest.mark.skipif(shutil.which("node") is None, reason="needs node")
 def test_page_says_the_same_words(tmp_path):
-    """describe.js on the same lobes gives the same text, table and cursor, character for character."""
+    """describe.js on the same lobes: the same text, table and cursor, to the character."""
     cases = []
     for case in CASES:
         ls = lobes(case)
@@ -112,8 +117,12 @@ def test_page_says_the_same_words(tmp_path):
         cases.append(
             {
                 "lobes": [
-                    {"name": lo.name, "thetaO": lo.theta_o.tolist(),
-                     "values": [float(v) for v in lo.values], "spike": lo.spike}
+                    {
+                        "name": lo.name,
+                        "thetaO": lo.theta_o.tolist(),
+                        "values": [float(v) for v in lo.values],
+                        "spike": lo.spike,
+                    }
                     for lo in ls
                 ],
                 "thetaI": theta_i,
@@ -136,12 +145,15 @@ import {{ readFileSync }} from "node:fs";
 const cases = JSON.parse(readFileSync(process.argv[2], "utf8"));
 const out = cases.map((c) => {{
   const table = d.table(c.lobes, c.thetaI, {GRAZING_DEG});
-  return {{ text: d.describe(c.lobes, c.thetaI, c.what, {GRAZING_DEG}), table, csv: d.csvText(table),
+  const text = d.describe(c.lobes, c.thetaI, c.what, {GRAZING_DEG});
+  return {{ text, table, csv: d.csvText(table),
     cursor: [-40, 0, 12, 45].map((t) => d.cursor(c.lobes[0], t, c.what, {GRAZING_DEG})) }};
 }});
 console.log(JSON.stringify(out));
 """
     )
-    result = subprocess.run(["node", str(script), str(data)], capture_output=True, text=True, check=True)
-    for case, js in zip(cases, json.loads(result.stdout)):
+    result = subprocess.run(
+        ["node", str(script), str(data)], capture_output=True, text=True, check=True
+    )
+    for case, js in zip(cases, json.loads(result.stdout), strict=True):
         assert js == case["python"]

@@ -86,6 +86,12 @@ class LiveText(QWidget):
         painter.end()
 
 
+def setting_label(name: str) -> str:
+    """A setting's label from the view registry (its name when it has none)."""
+    spec = views.all_settings().get(name)
+    return (spec.label if spec is not None else "") or name
+
+
 class SettingSlider(QWidget):
     """A labelled slider bound to one float setting (theta_i, phi_i, exposure, ...)."""
 
@@ -96,8 +102,11 @@ class SettingSlider(QWidget):
         self.settings, self.name, self.low, self.step = settings, name, low, step
         layout = QHBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        layout.addWidget(QLabel(label))
+        title = QLabel(label)
+        layout.addWidget(title)
         self.slider = QSlider(Qt.Orientation.Horizontal)
+        title.setBuddy(self.slider)
+        self.slider.setAccessibleName(label)  # its value in words: _changed
         self.slider.setRange(0, round((high - low) / step))
         self.slider.setMinimumWidth(60)
         self.value_label = LiveText(width=5, align=Qt.AlignmentFlag.AlignRight)
@@ -121,6 +130,9 @@ class SettingSlider(QWidget):
         self.slider.setValue(round((value - self.low) / self.step))
         self.slider.blockSignals(False)
         self.value_label.setText(f"{value:g}")
+        # A screen reader reads the slider's position (0..180); the value, in its unit:
+        unit = " degrees" if self.name.startswith(("theta", "phi")) else ""
+        self.slider.setAccessibleDescription(f"{value:g}{unit}")
 
 
 class SettingCheck(QCheckBox):
@@ -145,6 +157,7 @@ class SettingCombo(QComboBox):
     def __init__(self, settings: Settings, name: str, items: tuple[str, ...]):
         super().__init__()
         self.addItems(items)
+        self.setAccessibleName(setting_label(name))
         self.setCurrentIndex(int(settings[name]))
         self.currentIndexChanged.connect(lambda i: settings.set(name, i))
         settings.changed.connect(

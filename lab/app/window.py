@@ -23,6 +23,7 @@ from PyQt6.QtWidgets import (
 
 from lab import views
 from lab.app import layouts
+from lab.app.a11y import follow_focus
 from lab.app.files import ModelFiles
 from lab.app.model_list import ModelList
 from lab.app.params import ParamPanel
@@ -79,6 +80,7 @@ class MainWindow(ModelFiles, QMainWindow):
         self.resize(1280, 800)
         self.desk_shown = [n for n, d in self.docks.items() if not d.isHidden()]
         self._fitted = False
+        follow_focus(self)  # names for what Qt makes itself (lab/app/a11y.py)
 
     def showEvent(self, event) -> None:
         super().showEvent(event)

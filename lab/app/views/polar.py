@@ -14,7 +14,7 @@ from PyQt6.QtCore import Qt
 from PyQt6.QtGui import QColor, QFontMetrics
 from PyQt6.QtWidgets import QBoxLayout, QLabel, QPushButton
 
-from lab import constants, plotscale
+from lab import constants, describe, plotscale
 from lab.app.state import ModelState
 from lab.app.views.base import LUMA, QWIDGETSIZE_MAX, View, opaque, pen, state_key
 from lab.app.widgets import SettingCheck
@@ -195,7 +195,19 @@ class PolarView(View):
                 spike.setData([], [])
         self.clip_marks.setData(clipped_x, clipped_y)
         self.draw_legend(lum, scale)
+        self.describe(lum, theta_i, cos)
         return False
+
+    def describe(self, lum, theta_i: float, cos: bool) -> None:
+        """The plot in words for screen readers (lab/describe.py, as the web page says it)."""
+        lobes = []
+        for st, p, v in lum:
+            spike = None if p.spike is None else float(np.asarray(p.spike) @ LUMA)
+            lobes.append(describe.Lobe(st.label, p.theta_o, v, spike))
+        what = "f_r cos θo" if cos else "f_r"
+        text = describe.describe(lobes, theta_i, what) if lobes else "no model is visible"
+        self.plot.setAccessibleName("polar plot of the visible models")
+        self.plot.setAccessibleDescription(text)
 
     def fit_range(self) -> None:
         """The half disc and room for a line of text above the rim (the direction labels)

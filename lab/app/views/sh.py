@@ -21,7 +21,7 @@ from PyQt6.QtWidgets import QLabel, QSpinBox
 from lab import plotscale
 from lab.app.state import ModelState, Settings
 from lab.app.views.base import LUMA, View, look_key, pen, state_key
-from lab.app.widgets import LiveText
+from lab.app.widgets import LiveText, setting_label
 from lab.glsl import ShaderCompileError
 from lab.models import ModelError
 from lab.render import direction, plane_of_incidence
@@ -61,6 +61,7 @@ class SettingSpin(QSpinBox):
     def __init__(self, settings: Settings, name: str, low: int, high: int):
         super().__init__()
         self.setRange(low, high)
+        self.setAccessibleName(setting_label(name))
         self.setValue(int(settings[name]))
         self.valueChanged.connect(lambda v: settings.set(name, v))
         settings.changed.connect(
