@@ -138,6 +138,7 @@ function orbitKeys(lab) {
     e.preventDefault();
     e.stopPropagation();
     window.brdfLab.setSettings(change);
+    if (document.activeElement !== c) c.focus(); // the views were put back in place: keep the focus
   }, true);
 }
 
