@@ -1,0 +1,129 @@
+"""The lecture deck for every student: axe-core finds no violation on any slide or in any
+live demo; equations carry MathML; browser zoom enlarges the text; one-letter shortcuts can
+be switched off; Space on a demo's check box ticks it and leaves the slide where it is."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from lab.web.browser import chromium_path
+from tests.axe import deck_states, violations
+
+pytestmark = pytest.mark.skipif(
+    shutil.which("node") is None or shutil.which("npm") is None or chromium_path() is None,
+    reason="needs node, npm and Chromium (apt-get install nodejs npm chromium)",
+)
+
+
+@pytest.fixture(scope="module")
+def deck(tmp_path_factory):
+    from lab.web.slides import build
+
+    return build(tmp_path_factory.mktemp("deck")).parent
+
+
+@pytest.fixture(scope="module")
+def browser(deck):
+    from lab.web.browser import chromium
+    from lab.web.site import serving
+
+    with serving(deck) as url, chromium() as browser:
+        browser.base_url = url
+        yield browser
+
+
+def test_equations_carry_mathml(deck):
+    html = (deck / "index.html").read_text(encoding="utf-8")
+    katex = html.count('class="katex"')
+    assert katex >= 100 and html.count('class="katex-mathml"><math') == katex
+
+
+def test_axe_finds_no_violation_on_any_slide_or_demo(browser):
+    found = {}
+    frames = 0
+    for name, page, frame in deck_states(browser, browser.base_url):
+        bad = violations(page)
+        if frame is not None:
+            frames += 1
+            bad += violations(page, frame)
+        if bad:
+            found[name] = [(v["id"], v["nodes"][:2]) for v in bad]
+    assert frames >= 8  # every live demo was audited too
+    assert found == {}, found
+
+
+def slide_text_px(page) -> float:
+    """The on-screen height, in device pixels, of the title slide's heading."""
+    return page.evaluate(
+        "() => document.querySelector('.reveal .slides section h1, .reveal .slides section h2')"
+        ".getBoundingClientRect().height * devicePixelRatio"
+    )
+
+
+def open_deck(browser, query: str = "", zoom: float = 1.0, base: float = 1.0):
+    """The deck in a window of 1280x800 device pixels at browser zoom `zoom` (opened at `base`)."""
+    context = browser.new_context(
+        viewport={"width": round(1280 / zoom), "height": round(800 / zoom)},
+        device_scale_factor=zoom,
+    )
+    context.add_init_script(f"sessionStorage.setItem('deck-dpr', '{base}')")
+    page = context.new_page()
+    page.goto(f"{browser.base_url}index.html{query}")
+    page.wait_for_function("window.Reveal && Reveal.isReady()")
+    page.wait_for_timeout(100)
+    return context, page
+
+
+def test_browser_zoom_enlarges_the_text(browser):
+    context, page = open_deck(browser)
+    plain = slide_text_px(page)
+    context.close()
+    context, page = open_deck(browser, zoom=2.0)
+    assert page.evaluate("Reveal.getConfig().width") == 640
+    zoomed = slide_text_px(page)
+    context.close()
+    assert zoomed >= 1.8 * plain, (plain, zoomed)
+
+
+def test_one_letter_shortcuts_can_be_switched_off(browser):
+    context, page = open_deck(browser)
+    page.keyboard.press("b")  # reveal: black out the screen
+    assert page.evaluate("Reveal.isPaused()")
+    context.close()
+    context, page = open_deck(browser, "?letters=off")
+    page.keyboard.press("b")
+    assert not page.evaluate("Reveal.isPaused()")
+    page.keyboard.press("ArrowRight")  # the arrows still turn the slides
+    assert page.evaluate("Reveal.getIndices().h") == 1
+    context.close()
+    context, page = open_deck(browser, "?keys=n:next")
+    page.keyboard.press("n")
+    assert page.evaluate("Reveal.getIndices().h") == 1
+    context.close()
+
+
+def test_space_on_a_demo_checkbox_ticks_it_and_stays_on_the_slide(browser, deck):
+    from lab.web.slides import deck_info
+
+    demo = next(d for d in deck_info(deck)["demos"] if "cos" in d["hash"].split("show=")[1])
+    context, page = open_deck(browser)
+    page.evaluate("i => Reveal.slide(i)", demo["slide"])
+    page.wait_for_function(
+        "() => { const f = document.querySelector('.present iframe.demo');"
+        " return f && f.contentWindow && f.contentWindow.brdfLab &&"
+        " f.contentWindow.brdfLab.state.firstRenderMs !== null; }",
+        timeout=60_000,
+    )
+    frame = page.query_selector(".present iframe.demo").content_frame()
+    frame.wait_for_function("window.brdfLabA11y && window.brdfLabA11y.plots")
+    frame.focus("#cos-weighted")
+    page.keyboard.press("Space")
+    page.wait_for_timeout(200)
+    assert frame.evaluate("document.querySelector('#cos-weighted').checked")
+    assert page.evaluate("Reveal.getIndices().h") == demo["slide"]
+    page.keyboard.press("PageDown")  # the slide keys still pass up to the deck
+    page.wait_for_timeout(200)
+    assert page.evaluate("Reveal.getIndices().h") == demo["slide"] + 1
+    context.close()
