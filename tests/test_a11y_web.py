@@ -239,3 +239,39 @@ def test_reflow_at_320_css_px(browser, address):
         == 0
     )
     page.close()
+
+
+def test_sonification_pitch_follows_the_lobe_and_pans_as_drawn(browser):
+    """The sweep rendered offline: the highest pitch where f_r peaks (θo = θi, the mirror, left
+    of the normal as drawn), the left channel louder there than the right."""
+    page = open_lab(browser, browser.base_url, "model=phong&ke=20&kd=0,0,0&light=45,0")
+    ready(page)
+    out = page.evaluate(
+        """async () => {
+          const { sonify } = await import('./plotread.js');
+          const reader = [...brdfLabA11y.plots.readers.values()][0];  // panel 1's plot
+          const rate = 8000, ctx = new OfflineAudioContext(2, rate * 3.2, rate);
+          sonify(reader.lobes(), 45, ctx);
+          const buf = await ctx.startRendering();
+          const [l, r] = [buf.getChannelData(0), buf.getChannelData(1)];
+          // zero crossings (pitch) and energy per channel in 0.1 s windows
+          const win = rate / 10, rows = [];
+          for (let s = 0; s + win <= l.length; s += win) {
+            let z = 0, el = 0, er = 0;
+            for (let i = s + 1; i < s + win; i++) {
+              if ((l[i - 1] + r[i - 1] < 0) !== (l[i] + r[i] < 0)) z++;
+              el += l[i] * l[i]; er += r[i] * r[i];
+            }
+            rows.push([z, el, er]);
+          }
+          return rows; }"""
+    )
+    # 0.05 s lead-in; the sweep covers θo -90..90 in 3 s: θo = 45 at 0.05 + 2.25 s.
+
+    def at(theta: float) -> int:
+        return int((0.05 + (theta + 90) / 180 * 3) * 10)
+
+    assert out[at(45)][0] > 2 * out[at(-45)][0]  # the peak sounds higher than the far side
+    assert out[at(45)][1] > out[at(45)][2]  # mirror side (left as drawn) in the left ear
+    assert out[at(-60)][2] > out[at(-60)][1]  # the light's side in the right ear
+    page.close()

@@ -42,7 +42,10 @@ class PlotReader {
     this.toggle.addEventListener("click", () => this.showTable(this.tableBox.hidden));
     this.csv = el("button", { type: "button", class: "plot-csv" }, "CSV");
     this.csv.addEventListener("click", () => this.download());
-    this.tools = el("div", { class: "plot-read" }, this.toggle, this.csv, this.readout);
+    this.listen = el("button", { type: "button", class: "plot-listen",
+      title: "hear the lobe: a 3 s sweep from θo −90° to 90°, pitch follows f_r, left–right follows θo as drawn, ticks at L, N and R" }, "listen");
+    this.listen.addEventListener("click", () => sonify(this.lobes(), this.lab.lights[0].theta));
+    this.tools = el("div", { class: "plot-read" }, this.toggle, this.csv, this.listen, this.readout);
     canvas.closest(".view").after(this.tools, this.tableBox);
     canvas.setAttribute("aria-describedby", this.readout.id);
     canvas.addEventListener("keydown", (e) => this.key(e));
@@ -179,6 +182,46 @@ class PlotReader {
     ctx.lineTo(...at(this.theta, geometry.radius));
     ctx.stroke();
     ctx.setLineDash([]);
+  }
+}
+
+const SWEEP_S = 3;
+let audio = null;
+
+/** The lobes as sound (Web Audio): one sweep of θo from −90° to 90° in SWEEP_S seconds, one
+ * voice per lobe, pitch from 220 Hz (0) to 880 Hz (the highest peak), panned as drawn (the
+ * light's side on the right); short ticks at the light (L), the normal (N) and the mirror (R).
+ * `context`: an (Offline)AudioContext to play into instead of the speakers. */
+export function sonify(lobes, thetaI, context = null) {
+  if (!context && !window.AudioContext) return;
+  audio = context || audio || new AudioContext();
+  const t0 = audio.currentTime + 0.05;
+  const top = Math.max(1e-12, ...lobes.map((l) => Math.max(...l.values)));
+  const pan = audio.createStereoPanner();
+  pan.connect(audio.destination);
+  pan.pan.setValueAtTime(1, t0);
+  pan.pan.linearRampToValueAtTime(-1, t0 + SWEEP_S); // θo −90° (right, as drawn) to 90° (left)
+  lobes.forEach((lobe, k) => {
+    const osc = audio.createOscillator();
+    const gain = audio.createGain();
+    osc.type = ["sine", "triangle", "square", "sawtooth"][k % 4];
+    const freqs = new Float32Array(lobe.values.map((v) => 220 * Math.pow(4, Math.min(v / top, 1))));
+    osc.frequency.setValueCurveAtTime(freqs, t0, SWEEP_S);
+    gain.gain.value = 0.15 / lobes.length;
+    osc.connect(gain).connect(pan);
+    osc.start(t0);
+    osc.stop(t0 + SWEEP_S);
+  });
+  for (const theta of [-thetaI, 0, thetaI]) {
+    const tick = audio.createOscillator();
+    const gain = audio.createGain();
+    const at = t0 + ((theta + 90) / 180) * SWEEP_S;
+    tick.frequency.value = 1760;
+    gain.gain.setValueAtTime(0.2, at);
+    gain.gain.exponentialRampToValueAtTime(0.001, at + 0.05);
+    tick.connect(gain).connect(pan);
+    tick.start(at);
+    tick.stop(at + 0.06);
   }
 }
 
