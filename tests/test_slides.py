@@ -431,11 +431,11 @@ def test_two_model_demos_give_the_plot_room(deck, deck_720):
 
 
 # How far (screen px) the present slide's content reaches past the slide's box; KaTeX's
-# own stretchy SVG paths are left out (they are clipped by design).
+# own stretchy SVG paths and its MathML for screen readers are left out (clipped by design).
 OVERFLOW = """() => { const box = document.querySelector('.reveal .slides').getBoundingClientRect();
   let worst = 0, what = '';
   for (const e of document.querySelectorAll('section.present *')) {
-    if (e.closest('.katex svg, aside.notes')) continue;
+    if (e.closest('.katex svg, .katex-mathml, aside.notes')) continue;
     const r = e.getBoundingClientRect();
     if (!r.width || !r.height) continue;
     const over = Math.max(r.bottom - box.bottom, r.right - box.right, box.left - r.left);
