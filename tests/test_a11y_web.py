@@ -21,6 +21,8 @@ CONTROLS = """() => [...document.querySelectorAll(
   .filter((e) => e.getClientRects().length && !e.disabled && !e.closest("[hidden]")
     && getComputedStyle(e).visibility !== "hidden")
   .map((e) => e.id || e.outerHTML.slice(0, 80))"""
+# A page setting by its registry name (a page from before the registry: a field of its state).
+SETTING = """async (name) => (await import('./plotread.js')).setting(brdfLab.state, name)"""
 # The live region's texts, collected as they are set.
 COLLECT = """() => { window.said = []; new MutationObserver(() => {
   const t = document.getElementById('announce').textContent; if (t) said.push(t); })
@@ -186,14 +188,14 @@ def test_orbit_the_3d_lobe_by_keys(browser):
     page = open_lab(browser, browser.base_url, "model=phong&views=lobe3d")
     ready(page)
     canvas = page.locator("canvas.lobe3d").first
-    before = [page.evaluate("brdfLab.state.lobeYaw"), canvas.evaluate("c => c.toDataURL()")]
+    before = [page.evaluate(SETTING, "lobe_yaw"), canvas.evaluate("c => c.toDataURL()")]
     canvas.focus()
     page.keyboard.press("ArrowLeft")
     page.keyboard.press("+")  # the focus stays on the lobe after the first key
     page.evaluate("brdfLab.renderNow()")
-    after = [page.evaluate("brdfLab.state.lobeYaw"), canvas.evaluate("c => c.toDataURL()")]
+    after = [page.evaluate(SETTING, "lobe_yaw"), canvas.evaluate("c => c.toDataURL()")]
     assert after[0] == pytest.approx(before[0] - 0.2)
-    assert page.evaluate("brdfLab.state.lobeZoom") == pytest.approx(1.2)
+    assert page.evaluate(SETTING, "lobe_zoom") == pytest.approx(1.2)
     assert after[1] != before[1]  # the picture turned
     page.close()
 

@@ -4,7 +4,7 @@
 // practice run, progress at most every PROGRESS_MS, pause for the Monte Carlo estimate,
 // keyboard orbit and zoom, lists that open on Enter. It attaches by ids, classes and events
 // to what lab.js builds (a MutationObserver follows the panels), so lab.js stays unaware.
-import { readPlots } from "./plotread.js";
+import { readPlots, setting, settingName } from "./plotread.js";
 
 const PROGRESS_MS = 5000;
 let uid = 0;
@@ -125,15 +125,17 @@ function orbitKeys(lab) {
     if (!(c instanceof HTMLCanvasElement) || e.altKey || e.ctrlKey || e.metaKey) return;
     const lobe = c.classList.contains("lobe3d");
     if (!lobe && !c.classList.contains("object")) return;
-    const [yaw, pitch] = lobe ? ["lobeYaw", "lobePitch"] : ["yaw", "pitch"];
+    const [yaw, pitch] = lobe ? ["lobe_yaw", "lobe_pitch"] : ["yaw", "pitch"];
+    const get = (name) => setting(lab, name);
     const step = e.shiftKey ? 0.05 : 0.2;
     const change = {};
-    if (e.key === "ArrowLeft") change[yaw] = lab[yaw] - step;
-    else if (e.key === "ArrowRight") change[yaw] = lab[yaw] + step;
-    else if (e.key === "ArrowUp") change[pitch] = Math.min(lab[pitch] + step, 1.5);
-    else if (e.key === "ArrowDown") change[pitch] = Math.max(lab[pitch] - step, -1.5);
-    else if (lobe && (e.key === "+" || e.key === "=")) change.lobeZoom = Math.min(lab.lobeZoom * 1.2, 8);
-    else if (lobe && (e.key === "-" || e.key === "_")) change.lobeZoom = Math.max(lab.lobeZoom / 1.2, 0.2);
+    const put = (name, value) => (change[settingName(lab, name)] = value);
+    if (e.key === "ArrowLeft") put(yaw, get(yaw) - step);
+    else if (e.key === "ArrowRight") put(yaw, get(yaw) + step);
+    else if (e.key === "ArrowUp") put(pitch, Math.min(get(pitch) + step, 1.5));
+    else if (e.key === "ArrowDown") put(pitch, Math.max(get(pitch) - step, -1.5));
+    else if (lobe && (e.key === "+" || e.key === "=")) put("lobe_zoom", Math.min(get("lobe_zoom") * 1.2, 8));
+    else if (lobe && (e.key === "-" || e.key === "_")) put("lobe_zoom", Math.max(get("lobe_zoom") / 1.2, 0.2));
     else return;
     e.preventDefault();
     e.stopPropagation();

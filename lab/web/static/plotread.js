@@ -5,6 +5,14 @@
 import { csvText, cursor, describe, summarise, table } from "./describe.js";
 
 const SETTLE_MS = 400;
+// Page settings by the registry's names (lab.settings); a page from before the registry kept
+// them as fields of its state under these names.
+const OLD_NAMES = { polar_cos: "cosWeighted", polar_log: "polarLog", phi_o: "phiO", lobe_yaw: "lobeYaw",
+  lobe_pitch: "lobePitch", lobe_zoom: "lobeZoom" };
+/** The name `setSettings` takes for setting `name` on this page. */
+export const settingName = (lab, name) => (lab.settings && name in lab.settings ? name : OLD_NAMES[name] ?? name);
+/** A page setting's value. */
+export const setting = (lab, name) => (lab.settings && name in lab.settings ? lab.settings[name] : lab[settingName(lab, name)]);
 
 /** The lobes a plot shows, as describe.js takes them. */
 function lobesOf(lab, C, panels) {
@@ -14,7 +22,7 @@ function lobesOf(lab, C, panels) {
     const thetaO = [];
     for (let i = 0; i < 181; i++) {
       let f = C.LUMA[0] * p.lobe[4 * i] + C.LUMA[1] * p.lobe[4 * i + 1] + C.LUMA[2] * p.lobe[4 * i + 2];
-      if (lab.cosWeighted) f *= Math.cos(((i - 90) * Math.PI) / 180);
+      if (setting(lab, "polar_cos")) f *= Math.cos(((i - 90) * Math.PI) / 180);
       values.push(Number.isFinite(f) ? Math.max(f, 0) : 0);
       thetaO.push(i - 90);
     }
@@ -25,7 +33,7 @@ function lobesOf(lab, C, panels) {
   });
 }
 
-const what = (lab) => (lab.cosWeighted ? "f_r cos θo" : "f_r");
+const what = (lab) => (setting(lab, "polar_cos") ? "f_r cos θo" : "f_r");
 
 /** Reading aids under one plot canvas: table toggle, CSV, cursor readout. */
 class PlotReader {
@@ -62,7 +70,8 @@ class PlotReader {
     const lobes = this.lobes();
     const lab = this.lab;
     if (!lobes.length) return;
-    const plane = lab.phiO ? `In the plane turned φo ${lab.phiO}° from the plane of incidence: ` : "";
+    const phiO = setting(lab, "phi_o");
+    const plane = phiO ? `In the plane turned φo ${phiO}° from the plane of incidence: ` : "";
     const text = describe(lobes, lab.lights[0].theta, what(lab), this.C.GRAZING_DEG);
     this.canvas.setAttribute("aria-label", `Polar plot. ${plane}${text}`);
     this.canvas.dataset.description = text;
@@ -144,7 +153,7 @@ class PlotReader {
     };
     const radiusOf = (f) => {
       const floor = geometry.scale * Math.pow(10, -this.C.PLOT_DECADES);
-      const r = this.lab.polarLog ? Math.log10(Math.max(f, floor) / floor) / this.C.PLOT_DECADES : f / geometry.scale;
+      const r = setting(this.lab, "polar_log") ? Math.log10(Math.max(f, floor) / floor) / this.C.PLOT_DECADES : f / geometry.scale;
       return geometry.radius * Math.min(Math.max(r, 0), 1);
     };
     const panels = this.panels().filter((p) => p.lobe && p.model);
