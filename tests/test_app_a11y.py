@@ -78,3 +78,21 @@ def test_polar_plot_describes_its_lobes_as_lab_describe(qtbot, window):
         ref = describe.summarise(describe.reference_lobe(state.model.name, state.values, 45.0))
         assert f"{describe.fmt(ref.peak)} sr⁻¹; half width {describe.deg(ref.half_width)}" in text
     assert "Highest peak:" in text
+
+
+def test_3d_lobe_and_lit_object_turn_by_keys(qtbot, window):
+    from PyQt6.QtCore import Qt
+
+    settle(qtbot, window)
+    s = window.lab.settings
+    lobe = next(v for v in window.views if v.name == "lobe3d").canvas
+    yaw, zoom = s["lobe_yaw"], s["lobe_zoom"]
+    qtbot.keyClick(lobe, Qt.Key.Key_Right)
+    qtbot.keyClick(lobe, Qt.Key.Key_Plus)
+    assert s["lobe_yaw"] > yaw and s["lobe_zoom"] > zoom
+    thing = next(v for v in window.views if v.name == "object").canvas
+    pitch = s["pitch"]
+    qtbot.keyClick(thing, Qt.Key.Key_Up)
+    assert s["pitch"] > pitch
+    for widget in (lobe, thing):
+        assert widget.focusPolicy() != Qt.FocusPolicy.NoFocus

@@ -7,6 +7,7 @@ from PyQt6.QtCore import QPointF
 from PyQt6.QtGui import QColor, QImage, QPainter
 from PyQt6.QtWidgets import QCheckBox, QWidget
 
+from lab.app.a11y import OrbitKeys
 from lab.app.state import ModelState
 from lab.app.views.base import BACKGROUND, View, opaque, state_key
 from lab.app.widgets import LiveText, SettingCheck
@@ -91,6 +92,8 @@ class LobeView(View):
         hint = LiveText("drag: rotate, wheel: zoom", short="drag, wheel", optional=True)
         self.tools.addWidget(hint, 1)
         self.canvas = LobeCanvas(self)
+        self.canvas.setAccessibleName("3D lobe of the visible models")
+        OrbitKeys(self.canvas, s, "lobe_yaw", "lobe_pitch", "lobe_zoom")
         for widget in (hint, self.canvas):
             widget.setToolTip("drag to rotate the lobe, turn the wheel to zoom")
         self.layout_.addWidget(self.canvas, 1)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from PyQt6.QtWidgets import QComboBox, QHBoxLayout
 
+from lab.app.a11y import OrbitKeys
 from lab.app.renderer import MODES, SHAPES
 from lab.app.state import ModelState
 from lab.app.views.base import ImageRow, View, look_key, state_key, tonemap
@@ -40,6 +41,8 @@ class ObjectView(View):
         more.addWidget(SettingSlider.of(s, "ambient"), 1)
         self.layout_.addLayout(more)
         self.canvas = ImageRow(self.drag)
+        self.canvas.setAccessibleName("lit object")
+        OrbitKeys(self.canvas, s, "yaw", "pitch")
         self.layout_.addWidget(self.canvas, 1)
         self.image: np.ndarray | None = None
         self.start: tuple[float, float] | None = None
