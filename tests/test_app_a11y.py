@@ -44,6 +44,11 @@ def unnamed(root) -> list[str]:
 
 
 def test_every_focusable_widget_has_a_name(qtbot, window):
+    from lab.models import load_model
+
+    # Models of every kind of parameter (float, colour, menu, check box) in the panel.
+    for name in ("phong", "cook_torrance", "ward"):
+        window.lab.add(load_model(name))
     settle(qtbot, window)
     for dock in window.docks.values():
         dock.show()
@@ -96,3 +101,19 @@ def test_3d_lobe_and_lit_object_turn_by_keys(qtbot, window):
     assert s["pitch"] > pitch
     for widget in (lobe, thing):
         assert widget.focusPolicy() != Qt.FocusPolicy.NoFocus
+
+
+def test_a_rejected_value_is_said_at_its_field(qtbot, window):
+    from lab.app.params import ParamControl
+    from lab.models import load_model
+
+    window.lab.add(load_model("phong"))
+    settle(qtbot, window)
+    row = next(c for c in window.findChildren(ParamControl) if c.param.name == "ke")
+    assert row.slider.accessibleName() == "ke"
+    assert row.slider.accessibleDescription().startswith("50;")
+    row.text.setText("fifty")
+    row.text.editingFinished.emit()
+    said = row.text.accessibleDescription()
+    assert "rejected" in said and "ke" in said
+    assert window.statusBar().currentMessage() == said

@@ -103,10 +103,27 @@ class ParamControl(QWidget):
         reset = QToolButton()
         reset.setText("↺")
         reset.setToolTip(f"reset {param.name} to its default")
+        reset.setAccessibleName(f"reset {param.name}")
+        self.name_controls(param)
         reset.clicked.connect(lambda: self.state.reset(param.name))
         layout.addWidget(reset)
         self.setToolTip(param.doc)
         self.refresh()
+
+    def name_controls(self, param: Param) -> None:
+        """Names a screen reader says for each control, the parameter's meaning as their
+        description (sighted users get it as the row's tooltip)."""
+        names = {
+            self.slider: param.name,
+            self.text: f"{param.name} {'as r,g,b' if param.kind == 'color' else 'value'}",
+            self.swatch: f"{param.name} colour: choose",
+            self.check: param.name,
+            self.combo: param.name,
+        }
+        for widget, name in names.items():
+            if widget is not None:
+                widget.setAccessibleName(name)
+                widget.setAccessibleDescription(param.doc)
 
     def _set(self, value) -> None:
         try:
@@ -116,6 +133,7 @@ class ParamControl(QWidget):
             return
         if self.text is not None:
             self.text.setToolTip("")  # an old rejection no longer applies
+            self.text.setAccessibleDescription(self.param.doc)
 
     def _reject(self, reason: str) -> None:
         """Keep the old value and say why, in the status bar where the eye goes."""
@@ -125,6 +143,7 @@ class ParamControl(QWidget):
             window.statusBar().showMessage(message, 15000)
         if self.text is not None:
             self.text.setToolTip(message)
+            self.text.setAccessibleDescription(message)  # the error, tied to its field
         self.refresh()
 
     def _from_slider(self, position: int) -> None:
@@ -160,6 +179,8 @@ class ParamControl(QWidget):
             if slider_value(self.param, self.slider.value()) != value:
                 self.slider.setValue(slider_position(self.param, value))
             self._show_text(format_number(value))
+            # Read as the value, not the slider's position (0..STEPS).
+            self.slider.setAccessibleDescription(f"{format_number(value)}; {self.param.doc}")
         elif self.param.kind == "color":
             style = f"background: {color_hex(value)}"
             if self.swatch.styleSheet() != style:
