@@ -277,3 +277,27 @@ def test_sonification_pitch_follows_the_lobe_and_pans_as_drawn(browser):
     assert out[at(45)][1] > out[at(45)][2]  # mirror side (left as drawn) in the left ear
     assert out[at(-60)][2] > out[at(-60)][1]  # the light's side in the right ear
     page.close()
+
+
+def test_the_decks_monte_carlo_demo_pauses_and_names_its_pictures(browser):
+    page = browser.new_page(viewport={"width": 900, "height": 500})
+    page.goto(f"{browser.base_url}ibl_demo.html#model=ggx&size=64&target=100000")
+    page.wait_for_function("window.iblDemo && iblDemo.state.samples.length === 2")
+    canvas = page.locator("canvas").first
+    assert canvas.get_attribute("role") == "img"
+    label = page.evaluate(
+        "() => document.getElementById("
+        "document.querySelector('canvas').getAttribute('aria-labelledby')).textContent"
+    )
+    assert " spp" in label
+    page.focus("#pause")
+    page.keyboard.press("Space")
+    page.wait_for_timeout(200)
+    samples = page.evaluate("iblDemo.state.samples")
+    page.wait_for_timeout(600)
+    assert page.evaluate("iblDemo.state.samples") == samples
+    assert page.locator("#pause").get_attribute("aria-pressed") == "true"
+    page.keyboard.press("Space")
+    page.wait_for_function(f"iblDemo.state.samples[0] > {samples[0]}")
+    assert violations(page) == []
+    page.close()

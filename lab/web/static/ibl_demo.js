@@ -76,6 +76,9 @@ class Panel {
     this.canvas = document.createElement("canvas");
     this.canvas.width = this.canvas.height = size;
     this.caption = document.createElement("figcaption");
+    this.caption.id = `caption-${strategy}`;
+    this.canvas.setAttribute("role", "img"); // named by its caption: the strategy and samples so far
+    this.canvas.setAttribute("aria-labelledby", this.caption.id);
     this.figure.append(this.canvas, this.caption);
     $("panels").append(this.figure);
     this.ctx2d = this.canvas.getContext("2d");
@@ -167,7 +170,7 @@ function restart() {
 
 let pending = false;
 function schedule() {
-  if (pending) return;
+  if (pending || demo.paused) return;
   pending = true;
   requestAnimationFrame(frame);
 }
@@ -284,10 +287,20 @@ async function main() {
     const t = e.target;
     const slider = t instanceof HTMLInputElement && t.type === "range";
     if (t instanceof HTMLSelectElement || (slider && e.key.startsWith("Arrow"))) return;
+    if (e.key === " " && t instanceof HTMLButtonElement) return; // Space presses the button
     e.preventDefault();
     window.parent.postMessage({ brdfLab: "slide", step }, "*");
   });
+  // A pause for the running estimate; with reduced motion it waits after the first image.
+  const pause = (paused) => {
+    demo.paused = paused;
+    $("pause").setAttribute("aria-pressed", String(paused));
+    $("pause").textContent = paused ? "continue" : "pause";
+    if (!paused) schedule();
+  };
+  $("pause").onclick = () => pause(!demo.paused);
   schedule();
+  if (matchMedia("(prefers-reduced-motion: reduce)").matches) requestAnimationFrame(() => pause(true));
 }
 
 main().catch((err) => fail(String(err && err.message ? err.message : err)));
