@@ -301,3 +301,18 @@ def test_the_decks_monte_carlo_demo_pauses_and_names_its_pictures(browser):
     page.wait_for_function(f"iblDemo.state.samples[0] > {samples[0]}")
     assert violations(page) == []
     page.close()
+
+
+def test_leaving_a_list_after_arrows_keeps_the_old_choice(browser):
+    page = open_lab(browser, browser.base_url, "model=phong")
+    ready(page)
+    page.focus("#preset")
+    page.keyboard.press("ArrowDown")
+    page.keyboard.press("Tab")
+    assert page.evaluate("document.querySelector('#preset').value") == ""
+    assert page.evaluate("brdfLab.state.panels.map(p => p.name)") == ["phong"]
+    page.focus("#preset")
+    page.keyboard.press("ArrowDown")
+    page.keyboard.press("Enter")
+    page.wait_for_function("location.hash !== '#model=phong'")  # Enter applied the first preset
+    page.close()

@@ -154,26 +154,41 @@ function keysStayInControls() {
   }, true);
 }
 
-/** Preset and exercise lists change on Enter, not on each arrow key. */
+/** Preset and exercise lists change on Enter, not on each arrow key: an arrow only moves
+ * the choice (Enter opens it; leaving the list puts the old one back). */
 function enterToOpen() {
   const lists = new Set(["preset", "exercise-pick"]);
   let arrowAt = -Infinity;
+  addEventListener("focusin", (e) => {
+    if (lists.has(e.target.id)) e.target.dataset.chosen = e.target.value;
+  }, true);
   addEventListener("keydown", (e) => {
-    if (!lists.has(e.target.id)) return;
-    if (e.key.startsWith("Arrow") || e.key === "Home" || e.key === "End") arrowAt = performance.now();
-    else if (e.key === "Enter" && e.target.dataset.chosen !== e.target.value) {
+    const list = e.target;
+    if (!lists.has(list.id)) return;
+    if (e.key.startsWith("Arrow") || e.key === "Home" || e.key === "End" || e.key === "PageUp" || e.key === "PageDown") {
+      arrowAt = performance.now();
+    } else if (e.key === "Enter" && list.dataset.moved) {
       e.preventDefault();
       arrowAt = -Infinity;
-      e.target.dispatchEvent(new Event("change", { bubbles: true }));
+      delete list.dataset.moved;
+      list.dispatchEvent(new Event("change", { bubbles: true }));
     }
   }, true);
   addEventListener("change", (e) => {
-    if (!lists.has(e.target.id)) return;
+    const list = e.target;
+    if (!lists.has(list.id)) return;
     if (performance.now() - arrowAt < 500) {
-      e.stopImmediatePropagation(); // moved through the list: opens on Enter
+      e.stopImmediatePropagation(); // moved through the list: it opens on Enter
+      list.dataset.moved = "1";
       return;
     }
-    e.target.dataset.chosen = e.target.value;
+    list.dataset.chosen = list.value;
+  }, true);
+  addEventListener("focusout", (e) => {
+    const list = e.target;
+    if (!lists.has(list.id) || !list.dataset.moved) return;
+    delete list.dataset.moved;
+    list.value = list.dataset.chosen ?? "";
   }, true);
 }
 
