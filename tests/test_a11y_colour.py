@@ -80,8 +80,14 @@ def page(tmp_path_factory):
 
 
 def test_model_colours_apart_under_colour_blindness_and_against_the_panel(page):
-    colours = [hex_rgb(c) for c in page.evaluate("brdfLab.state.panels.map(p => p.color)")]
-    assert len(colours) == 6
+    from lab.app.state import PALETTE
+    from lab.app.views.base import BACKGROUND
+    from lab.constants import MODEL_COLORS
+
+    shown = page.evaluate("brdfLab.state.panels.map(p => p.color)")
+    assert shown == list(MODEL_COLORS) == PALETTE[:6]  # the page and the desktop: one set
+    colours = [hex_rgb(c) for c in shown]
+    assert min(contrast(c, BACKGROUND) for c in colours) >= 3.0  # the desktop's plots
     panel = page.evaluate("getComputedStyle(document.querySelector('.panel')).backgroundColor")
     background = [int(x) for x in panel[panel.index("(") + 1 : panel.index(")")].split(",")[:3]]
     ratios = [contrast(c, background) for c in colours]

@@ -12,6 +12,7 @@ from pathlib import Path
 from PyQt6.QtCore import QObject, pyqtSignal
 
 from lab import presets, views
+from lab.constants import MODEL_COLORS
 from lab.models import Model, ModelError, Value
 from lab.presets import (  # noqa: F401 (the app's modules import these from here)
     PRESET_DIR,
@@ -21,18 +22,8 @@ from lab.presets import (  # noqa: F401 (the app's modules import these from her
     shipped_presets,
 )
 
-PALETTE = [
-    "#e6194b",
-    "#3cb44b",
-    "#4363d8",
-    "#f58231",
-    "#911eb4",
-    "#42d4f4",
-    "#f032e6",
-    "#bfef45",
-    "#9a6324",
-    "#808000",
-]
+# The colour-blind safe colours first (six models apart for every reader), then more.
+PALETTE = [*MODEL_COLORS, "#f032e6", "#bfef45", "#9a6324", "#a0a6b0"]
 
 
 class ModelState(QObject):
