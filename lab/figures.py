@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import html
+import json
 from pathlib import Path
 
-from lab import diagrams, plots, views
+import numpy as np
+
+from lab import describe, diagrams, plots, views
+from lab.constants import LUMA
 from lab.models import load_model, model_names
 from lab.render import Renderer
 
@@ -71,7 +75,15 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
     ax.set_yticks([0.5, 1.0], ["", ""])  # rings at half and full peak; the caption says so
     ax.legend(loc="center left", bbox_to_anchor=(0.98, 0.62), fontsize=diagrams.FONT, frameon=False)
     fig.tight_layout()
-    paths.append(diagrams.save(fig, outdir / "off_specular_peak.png"))
+    path = diagrams.save(fig, outdir / "off_specular_peak.png")
+    paths.append(path)
+    # The plot in words for the deck's alt text (slides/build.mjs reads descriptions.json).
+    words = describe.describe(
+        [describe.Lobe(n, p.theta_o, p.values @ np.asarray(LUMA), None) for p, n, _ in lobes],
+        theta_i,
+        "f_r cos θo",
+    )
+    (outdir / "descriptions.json").write_text(json.dumps({path.name: words}, ensure_ascii=False), encoding="utf-8")
     # Measuring, and the microfacets' shadowing and masking.
     paths.append(diagrams.gonioreflectometer(renderer, outdir / "gonioreflectometer.png"))
     paths.append(diagrams.vgroove(outdir / "vgroove.png"))

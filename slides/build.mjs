@@ -74,7 +74,9 @@ function renderSlide(slide, outdir, used) {
           fail(line, `figure ${m[1]} was not rendered (lab.figures.lecture_figures makes it)`);
         }
         used.figures.push(m[1]);
-        return `<figure><img src="figures/${m[1]}" alt="${escapeHtml(m[2] || m[1])}"${style}>` +
+        // A plot's values in words (lab/describe.py, via lab.figures) follow its caption.
+        const words = descriptions[m[1]] ? `. ${descriptions[m[1]]}` : "";
+        return `<figure><img src="figures/${m[1]}" alt="${escapeHtml((m[2] || m[1]) + words)}"${style}>` +
           `<figcaption>${escapeHtml(m[2] || "")}</figcaption></figure>`;
       });
       body.push(keep(`<div class="figures">${cells.join("")}</div>`));
@@ -97,6 +99,8 @@ function renderSlide(slide, outdir, used) {
 const outdir = process.argv[2];
 if (!outdir) fail(1, "give the output folder: node slides/build.mjs OUTDIR");
 mkdirSync(outdir, { recursive: true });
+const described = join(outdir, "figures", "descriptions.json");
+const descriptions = existsSync(described) ? JSON.parse(readFileSync(described, "utf8")) : {};
 const used = { count: 0, demos: [], ibl: [], figures: [] };
 const sections = splitSlides(readFileSync(SOURCE, "utf8")).map((s) => renderSlide(s, outdir, used));
 const lib = (from, to) => cpSync(join(HERE, "node_modules", from), join(outdir, "lib", to), { recursive: true });

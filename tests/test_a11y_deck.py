@@ -127,3 +127,18 @@ def test_space_on_a_demo_checkbox_ticks_it_and_stays_on_the_slide(browser, deck)
     page.wait_for_timeout(200)
     assert page.evaluate("Reveal.getIndices().h") == demo["slide"] + 1
     context.close()
+
+
+def test_plot_figures_are_described_in_words(deck):
+    """The off-specular figure's alt text carries lab.describe's words: Cook-Torrance with
+    Schlick's F peaks past the mirror direction at θi = 75°."""
+    import html
+    import re
+
+    page = (deck / "index.html").read_text(encoding="utf-8")
+    alt = html.unescape(
+        re.search(r'<img src="figures/off_specular_peak.png" alt="([^"]*)"', page)[1]
+    )
+    assert "cook_torrance, θi 75°: peak of f_r cos θo at θo " in alt
+    peak = int(re.search(r"cook_torrance, θi 75°: peak of f_r cos θo at θo (\d+)°", alt)[1])
+    assert peak > 75  # the off-specular peak, in words
