@@ -83,7 +83,9 @@ def lecture_figures(outdir: str | Path, renderer: Renderer | None = None) -> lis
         theta_i,
         "f_r cos θo",
     )
-    (outdir / "descriptions.json").write_text(json.dumps({path.name: words}, ensure_ascii=False), encoding="utf-8")
+    (outdir / "descriptions.json").write_text(
+        json.dumps({path.name: words}, ensure_ascii=False), encoding="utf-8"
+    )
     # Measuring, and the microfacets' shadowing and masking.
     paths.append(diagrams.gonioreflectometer(renderer, outdir / "gonioreflectometer.png"))
     paths.append(diagrams.vgroove(outdir / "vgroove.png"))
