@@ -316,3 +316,25 @@ def test_leaving_a_list_after_arrows_keeps_the_old_choice(browser):
     page.keyboard.press("Enter")
     page.wait_for_function("location.hash !== '#model=phong'")  # Enter applied the first preset
     page.close()
+
+
+def test_editor_status_is_said_when_it_turns_not_at_each_key(browser):
+    page = open_lab(browser, browser.base_url, "model=phong")
+    ready(page)
+    page.evaluate("brdfLab.edit(0)")
+    page.wait_for_selector("#editor .cm-content")
+    page.evaluate("brdfLab.renderNow()")
+    page.wait_for_timeout(100)
+    page.evaluate(COLLECT)
+    status = page.locator("#editor .editor-status")
+    assert status.get_attribute("role") is None
+    page.focus("#editor .cm-content")
+    page.keyboard.press("Control+End")
+    for key in "float oops = ;":
+        page.keyboard.type(key)
+    page.wait_for_function("said.length > 0")
+    page.wait_for_timeout(300)
+    said = page.evaluate("said")
+    assert said == [status.text_content()]  # once, the error the line shows
+    assert said[0].startswith("1 error in phong.glsl")
+    page.close()

@@ -223,6 +223,21 @@ function estimates(lab) {
   }
 }
 
+/** The editor's compile status changes as one types: said when it turns from compiling to
+ * an error or back, not at every keystroke (the line stays on screen). */
+function editorStatus() {
+  const status = document.querySelector("#editor .editor-status");
+  if (!status || status.dataset.a11y) return;
+  status.dataset.a11y = "1";
+  status.removeAttribute("role");
+  let bad = status.classList.contains("bad");
+  new MutationObserver(() => {
+    const now = status.classList.contains("bad");
+    if (now !== bad) announce(status.textContent);
+    bad = now;
+  }).observe(status, { attributes: true, attributeFilter: ["class"], childList: true, characterData: true, subtree: true });
+}
+
 /** One announcement per practice run: points, then each check that failed with its message. */
 function practiceResults() {
   let said = 0;
@@ -272,6 +287,7 @@ function setUp() {
     named();
     nameCanvases(lab);
     estimates(lab);
+    editorStatus();
     results();
   };
   new MutationObserver((records) => {
