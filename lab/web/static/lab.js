@@ -895,9 +895,13 @@ function drawPolar(canvas, curves, thetaI, scale, legend = false) {
   ctx.lineWidth = 1;
   if (legend) {
     curves.forEach((curve, k) => {
-      ctx.fillStyle = curve.color;
+      // Names in the text colour (4.5:1), each after a bar of its curve's colour.
       const text = curve.name;
-      ctx.fillText(text, w - ctx.measureText(text).width - 4, (k + 2.6) * 1.2 * font);
+      const [x, y] = [w - ctx.measureText(text).width - 4, (k + 2.6) * 1.2 * font];
+      ctx.fillStyle = "#e6e6e6";
+      ctx.fillText(text, x, y);
+      ctx.fillStyle = curve.color;
+      ctx.fillRect(x - 1.6 * font, y - 0.45 * font, 1.2 * font, 0.3 * font);
     });
   }
   return { radius, scale, spikeLength, centre: [cx, cy], ringLabels, spikeLabel };

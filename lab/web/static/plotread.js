@@ -162,6 +162,7 @@ class PlotReader {
       const font = Math.max(11, Math.round(c.width / 30));
       ctx.font = `${font}px system-ui, sans-serif`;
       ctx.lineWidth = 1.5;
+      const taken = []; // label boxes placed so far
       lobes.forEach((lobe, k) => {
         const color = panels[k]?.color || "#ffffff";
         for (let t = -80; t <= 80; t += 20) {
@@ -172,14 +173,23 @@ class PlotReader {
         const peak = (s.halfWidth === null ? -45 : s.peakTheta) + 90; // a constant: its name at −45°
         const [x, y] = at(peak - 90, radiusOf(lobe.values[peak]));
         shape(ctx, k, x, y, color, 7);
-        const text = lobe.name;
-        const w = ctx.measureText(text).width;
-        const left = Math.min(Math.max(x + 8, 2), m.width - w - 2);
-        const top = Math.max(y - 6 - k * (font + 2), font);
-        ctx.fillStyle = "#15171ccc";
-        ctx.fillRect(left - 2, top - font, w + 4, font + 4);
-        ctx.fillStyle = color;
-        ctx.fillText(text, left, top);
+        // The name in the text colour on a dark box, clear of the other names and the titles,
+        // joined to its peak by a line of the curve's colour.
+        const w = ctx.measureText(lobe.name).width + 6;
+        const h = font + 4;
+        const box = placeLabel(taken, x, y, w, h, m.width, 2.7 * font, cy);
+        taken.push(box);
+        ctx.strokeStyle = color;
+        ctx.setLineDash([]);
+        ctx.beginPath();
+        ctx.moveTo(x, y);
+        ctx.lineTo(box[0] + (box[0] > x ? 0 : w), box[1] + h / 2);
+        ctx.stroke();
+        ctx.fillStyle = "#15171cdd";
+        ctx.fillRect(box[0], box[1], w, h);
+        ctx.strokeRect(box[0], box[1], w, h);
+        ctx.fillStyle = "#e6e6e6";
+        ctx.fillText(lobe.name, box[0] + 3, box[1] + font);
       });
     }
     if (this.theta === null) return;
@@ -232,6 +242,21 @@ export function sonify(lobes, thetaI, context = null) {
     tick.start(at);
     tick.stop(at + 0.06);
   }
+}
+
+/** A free spot [left, top] for a w × h label near (x, y): right of it, else left, stepping
+ * away up and down; inside the canvas, below `top` and above `bottom`. */
+function placeLabel(taken, x, y, w, h, width, top, bottom) {
+  const free = (l, t) => l >= 2 && l + w <= width - 2 && t >= top && t + h <= bottom &&
+    taken.every(([a, b]) => l + w <= a || a + w <= l || t + h <= b || b + h <= t);
+  for (let step = 0; step < 40; step++) {
+    const dy = (step % 2 ? -1 : 1) * Math.ceil(step / 2) * (h + 2);
+    for (const l of [x + 10, x - 10 - w]) {
+      const t = y - h / 2 + dy;
+      if (free(l, t)) return [l, t];
+    }
+  }
+  return [Math.min(Math.max(x + 10, 2), width - w - 2), Math.max(top, Math.min(y, bottom - h))];
 }
 
 /** Marker k (circle, square, triangle, diamond, cross, star) at (x, y), outlined dark. */
