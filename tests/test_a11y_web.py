@@ -338,3 +338,16 @@ def test_editor_status_is_said_when_it_turns_not_at_each_key(browser):
     assert said == [status.text_content()]  # once, the error the line shows
     assert said[0].startswith("1 error in phong.glsl")
     page.close()
+
+
+def test_a_controls_meaning_shows_on_keyboard_focus_and_escape_hides_it(browser):
+    page = open_lab(browser, browser.base_url, "model=phong")
+    ready(page)
+    page.focus("#reset")
+    page.keyboard.press("Shift+Tab")  # keyboard focus onto the exercise list
+    tip = page.locator("#focus-tip")
+    assert tip.is_visible() and "exercise" in tip.text_content()
+    page.keyboard.press("Escape")
+    assert not tip.is_visible()
+    assert page.evaluate("document.activeElement.id") == "exercise-pick"
+    page.close()

@@ -266,6 +266,8 @@ function focusTips() {
     tip.style.top = `${r.bottom + 4}px`;
   });
   addEventListener("focusout", () => (tip.hidden = true));
+  // Dismissible without moving the focus (WCAG 1.4.13).
+  addEventListener("keydown", (e) => e.key === "Escape" && !tip.hidden && (tip.hidden = true));
 }
 
 function setUp() {
