@@ -54,7 +54,7 @@ class PlotReader {
       title: "hear the lobe: a 3 s sweep from θo −90° to 90°, pitch follows f_r, left–right follows θo as drawn, ticks at L, N and R" }, "listen");
     this.listen.addEventListener("click", () => sonify(this.lobes(), this.lab.lights[0].theta));
     this.tools = el("div", { class: "plot-read" }, this.toggle, this.csv, this.listen, this.readout);
-    canvas.closest(".view").after(this.tools, this.tableBox);
+    canvas.closest(".view").append(this.tools, this.tableBox); // under the plot, in its box
     canvas.setAttribute("aria-describedby", this.readout.id);
     canvas.addEventListener("keydown", (e) => this.key(e));
     this.marker = el("canvas", { class: "plot-marker", "aria-hidden": "true" });
