@@ -104,6 +104,7 @@ class SamplesCombo(QComboBox):
         super().__init__()
         self.settings = settings
         self.setToolTip("samples per pixel to stop at (each strategy, both halves)")
+        self.setAccessibleName("samples per pixel to stop at")
         for count in SAMPLE_TARGETS:
             self.addItem(f"{count} spp", count)
         self.follow("ibl_samples")
