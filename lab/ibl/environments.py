@@ -7,9 +7,10 @@ sees). Directions and pixels map as in shaders/views/ibl.glsl.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
+import moderngl
 import numpy as np
 
 from lab.constants import LUMA
@@ -17,6 +18,7 @@ from lab.constants import LUMA
 PROCEDURAL = ("sky", "furnace", "studio", "grey_room")
 FILE_TYPES = (".hdr", ".pic", ".exr")
 DEFAULT_SIZE = (512, 256)  # width, height: 0.7 degree pixels
+ENV_UNIT = 8  # texture units 8..11 hold the environment (models' own data binds lower units)
 
 
 class EnvironmentError(ValueError):
@@ -206,3 +208,70 @@ def sampling_tables(image: np.ndarray) -> Sampling:
     return Sampling(
         density.astype(np.float32), marginal.astype(np.float32), conditional.astype(np.float32)
     )
+
+
+def mixture_share(image: np.ndarray) -> float:
+    """The mixture strategy's probability of drawing from the map: 0 for a constant map
+    (the furnace: its samples would only follow sin theta), rising to 1/2 as the light
+    gathers into small bright sources, by 1 - E[L]^2 / E[L^2] over the sphere (luminance,
+    solid-angle weights)."""
+    lum = image @ np.array(LUMA, np.float32)
+    weight = np.sin((np.arange(lum.shape[0]) + 0.5) / lum.shape[0] * np.pi)[:, None]
+    mean = float((lum * weight).sum() / (weight.sum() * lum.shape[1]))
+    square = float((lum * lum * weight).sum() / (weight.sum() * lum.shape[1]))
+    if square <= 0.0:
+        return 0.0
+    return 0.5 * max(0.0, 1.0 - mean * mean / square)
+
+
+@dataclass
+class Environment:
+    """An environment image with its sampling tables and GL textures (made on first use)."""
+
+    image: np.ndarray
+    name: str = "environment"
+    tables: Sampling = field(init=False)
+    share: float = field(init=False)  # the mixture strategy's share of map samples
+    _textures: list = field(default_factory=list, init=False, repr=False)
+
+    def __post_init__(self):
+        self.image = np.ascontiguousarray(self.image, dtype=np.float32)
+        self.tables = sampling_tables(self.image)
+        self.share = mixture_share(self.image)
+
+    @classmethod
+    def load(cls, source, size=DEFAULT_SIZE) -> Environment:
+        return cls(load(source, size), str(source))
+
+    @property
+    def size(self) -> tuple[int, int]:
+        return self.image.shape[1], self.image.shape[0]
+
+    def bind(self, ctx: moderngl.Context) -> dict:
+        if not self._textures:
+            w, h = self.size
+            t = self.tables
+            data = [
+                (self.image, (w, h), 3),
+                (t.density, (w, h), 1),
+                (t.marginal.reshape(1, -1), (h + 1, 1), 1),
+                (t.conditional, (w + 1, h), 1),
+            ]
+            for array, size, components in data:
+                texture = ctx.texture(size, components, np.ascontiguousarray(array), dtype="f4")
+                texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+                self._textures.append(texture)
+        for unit, texture in enumerate(self._textures):
+            texture.use(ENV_UNIT + unit)
+        return {
+            "u_env": ENV_UNIT,
+            "u_density": ENV_UNIT + 1,
+            "u_marginal": ENV_UNIT + 2,
+            "u_conditional": ENV_UNIT + 3,
+            "u_env_size": (float(self.size[0]), float(self.size[1])),
+        }
+
+    def release(self) -> None:
+        for texture in self._textures:
+            texture.release()
+        self._textures.clear()

@@ -1,27 +1,30 @@
 """Monte Carlo integration of the reflection equation on the GPU, accumulated progressively.
 
 `IBLRenderer` draws the lit sphere of shaders/views/ibl.glsl under an environment map with
-one of STRATEGIES. A model's BRDF sampler is the file shaders/samplers/<model>.glsl (it
-defines HAS_SAMPLER, SAMPLE_BRDF and PDF_BRDF); models without one fall back to cosine
-sampling for "brdf" and to cosine + environment for MIS, and `fallback` says so.
+one of STRATEGIES and one of SEQUENCES. A model's BRDF sampler is the file
+shaders/samplers/<model>.glsl (it defines HAS_SAMPLER, SAMPLE_BRDF and PDF_BRDF); a model
+without one (a .brdf file, a measured table, a user's shader) is sampled from a table of
+its own f_r cos built on the GPU (lab.ibl.table, terms/sampling_table.glsl), and
+`fallback` says so.
 """
 
 from __future__ import annotations
 
 import hashlib
 import math
-from dataclasses import dataclass, field
 
 import moderngl
 import numpy as np
 
 from lab import glsl
 from lab.constants import LUMA
-from lab.ibl import environments
+from lab.ibl.environments import Environment
+from lab.ibl.table import GLSL as TABLE_SAMPLER
+from lab.ibl.table import TableCache
 from lab.models import SHADER_DIR, Model, Value
 from lab.render import Renderer, as_model
 
-STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power")
+STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power", "mixture")
 STRATEGY_TITLES = {
     "uniform": "uniform hemisphere",
     "cosine": "cosine-weighted",
@@ -29,12 +32,17 @@ STRATEGY_TITLES = {
     "brdf": "BRDF importance",
     "mis_balance": "MIS, balance heuristic",
     "mis_power": "MIS, power heuristic",
+    "mixture": "one-sample MIS, environment share by the map",
 }
+# "random": PCG numbers, independent per pass (the grader's variance needs that);
+# "sobol": each pixel's own Owen-scrambled Sobol' sequence (terms/sampling.glsl).
+SEQUENCES = ("random", "sobol")
 SAMPLER_DIR = SHADER_DIR / "samplers"
 SAMPLING_TERMS = SHADER_DIR / "terms" / "sampling.glsl"
 ENVIRONMENT_TERMS = SHADER_DIR / "terms" / "environment.glsl"
 RENDER_VIEWS = ("ibl", "ibl_object")  # the sphere, and the lab's object (SHAPES)
 IBL_VIEWS = (*RENDER_VIEWS, "ibl_sample", "ibl_pdf")
+TABLE_VIEW = "ibl_table"  # the data-driven sampler's masses (lab.ibl.table)
 # The object view's shapes (lab.views.object.SHAPES, u_shape); "sphere" is the lit sphere.
 SHAPES = ("torus", "sphere", "rounded box", "bumpy sphere")
 NO_SAMPLER = """const bool HAS_SAMPLER = false;
@@ -47,7 +55,6 @@ const bool HAS_SAMPLER = true;
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return sample_lobe(u.xy, V, N, X, Y); }
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N, X, Y); }
 """
-ENV_UNIT = 8  # texture units 8..11 hold the environment (models' own data binds lower units)
 
 
 def sampler_path(model: Model):
@@ -70,6 +77,22 @@ def sampler_text(model: Model) -> str | None:
     return path.read_text(encoding="utf-8") if path is not None else None
 
 
+def tabulated(model: Model) -> bool:
+    """Whether the model is sampled from its table (no analytic sampler, not a mirror)."""
+    return sampler_text(model) is None and not model.delta
+
+
+def sampler_source(model: Model) -> tuple[str, str]:
+    """The sampler's GLSL and the label its lines are reported under."""
+    text = sampler_text(model)
+    if text is not None:
+        path = sampler_path(model)
+        return text, glsl.label_of(path) if path is not None else "<sampler>"
+    if tabulated(model):
+        return TABLE_SAMPLER.read_text(encoding="utf-8"), glsl.label_of(TABLE_SAMPLER)
+    return NO_SAMPLER, "<no sampler>"
+
+
 def guarded(model: Model) -> bool:
     """Whether the model's sampler is an exercise's, with its loops guarded."""
     return getattr(model, "sampler_code", None) is not None and model.loop_limit > 0
@@ -77,18 +100,18 @@ def guarded(model: Model) -> bool:
 
 def sampler_key(model: Model) -> str:
     """A comment line naming the sampler's text, so the program cache tells samplers apart."""
-    text = sampler_text(model) or ""
+    text = sampler_source(model)[0]
     return f"// sampler {sampler_path(model)} {hashlib.sha1(text.encode()).hexdigest()[:12]}"
 
 
 def fallback(model: Model, strategy: str) -> str | None:
     """What the view says when `strategy` needs a sampler the model lacks (else None)."""
-    if strategy not in ("brdf", "mis_balance", "mis_power") or sampler_path(model) is not None:
+    if strategy not in ("brdf", "mis_balance", "mis_power", "mixture") or not tabulated(model):
         return None
-    if model.delta:
-        return None
-    used = "cosine-weighted" if strategy == "brdf" else "MIS of cosine-weighted and environment"
-    return f"{model.name} has no BRDF sampler: {used} sampling instead"
+    return (
+        f"{model.name} has no BRDF sampler of its own: it is sampled from a table of its "
+        "f_r cos (data-driven, exact pdf)"
+    )
 
 
 def insert_before_view(source: glsl.Source, view: str, text: str, label: str) -> glsl.Source:
@@ -100,57 +123,6 @@ def insert_before_view(source: glsl.Source, view: str, text: str, label: str) ->
     source.lines[start:start] = extra.lines
     source.origins[start:start] = extra.origins
     return source
-
-
-@dataclass
-class Environment:
-    """An environment image with its sampling tables and GL textures (made on first use)."""
-
-    image: np.ndarray
-    name: str = "environment"
-    tables: environments.Sampling = field(init=False)
-    _textures: list = field(default_factory=list, init=False, repr=False)
-
-    def __post_init__(self):
-        self.image = np.ascontiguousarray(self.image, dtype=np.float32)
-        self.tables = environments.sampling_tables(self.image)
-
-    @classmethod
-    def load(cls, source, size=environments.DEFAULT_SIZE) -> Environment:
-        return cls(environments.load(source, size), str(source))
-
-    @property
-    def size(self) -> tuple[int, int]:
-        return self.image.shape[1], self.image.shape[0]
-
-    def bind(self, ctx: moderngl.Context) -> dict:
-        if not self._textures:
-            w, h = self.size
-            t = self.tables
-            data = [
-                (self.image, (w, h), 3),
-                (t.density, (w, h), 1),
-                (t.marginal.reshape(1, -1), (h + 1, 1), 1),
-                (t.conditional, (w + 1, h), 1),
-            ]
-            for array, size, components in data:
-                texture = ctx.texture(size, components, np.ascontiguousarray(array), dtype="f4")
-                texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-                self._textures.append(texture)
-        for unit, texture in enumerate(self._textures):
-            texture.use(ENV_UNIT + unit)
-        return {
-            "u_env": ENV_UNIT,
-            "u_density": ENV_UNIT + 1,
-            "u_marginal": ENV_UNIT + 2,
-            "u_conditional": ENV_UNIT + 3,
-            "u_env_size": (float(self.size[0]), float(self.size[1])),
-        }
-
-    def release(self) -> None:
-        for texture in self._textures:
-            texture.release()
-        self._textures.clear()
 
 
 def frame_uniforms(frame=None) -> dict:
@@ -169,25 +141,41 @@ class IBLRenderer(Renderer):
     exercise's sampler over many passes, until the grader takes it (lab.grading.checks)."""
 
     loop_stopped: tuple[int, int, int] | None = None
+    # The estimator's GLSL (terms/sampling.glsl, terms/environment.glsl): `ibl-bench
+    # --against` points these at an older checkout's to time its pass beside this one's.
+    sampling_terms = SAMPLING_TERMS
+    environment_terms = ENVIRONMENT_TERMS
+
+    @property
+    def tables(self) -> TableCache:
+        """The data-driven samplers' tables of this renderer's context."""
+        cache = self.__dict__.get("_tables")
+        if cache is None:
+            cache = self.__dict__["_tables"] = TableCache()
+        return cache
+
+    def table_uniforms(self, model: Model, values) -> dict:
+        """Build (or find) and bind the model's sampling table; {} for a model with an
+        analytic sampler."""
+        if not tabulated(model):
+            return {}
+        return self.tables.get(self, model, values).bind(self.ctx)
 
     def _assemble(self, model: Model, view: str, enums: dict, preamble: str):
         """The view's program with the sampling terms, the model's sampler and (for the
         render views) the environment terms between the model and the view template."""
         vertex, source = super()._assemble(model, view, enums, preamble)
+        terms = self.sampling_terms
+        sampling = (terms.read_text(encoding="utf-8"), glsl.label_of(terms))
+        if view == TABLE_VIEW:
+            insert_before_view(source, view, *sampling)
         if view in IBL_VIEWS:
-            path = sampler_path(model)
-            chunks = [
-                (SAMPLING_TERMS.read_text(encoding="utf-8"), glsl.label_of(SAMPLING_TERMS)),
-                (
-                    sampler_text(model) or NO_SAMPLER,
-                    glsl.label_of(path) if path is not None else "<no sampler>",
-                ),
-            ]
+            chunks = [sampling, sampler_source(model)]
             if view in RENDER_VIEWS:
                 chunks.append(
                     (
-                        ENVIRONMENT_TERMS.read_text(encoding="utf-8"),
-                        glsl.label_of(ENVIRONMENT_TERMS),
+                        self.environment_terms.read_text(encoding="utf-8"),
+                        glsl.label_of(self.environment_terms),
                     )
                 )
             for text, label in chunks:  # each goes just before the view: in order
@@ -201,15 +189,25 @@ class IBLRenderer(Renderer):
         for name, value in {
             **glsl.uniform_values(model, resolved),
             **data_uniforms,
+            **self.table_uniforms(model, values),
             **uniforms,
         }.items():
             if name in program:
                 program[name].value = value
 
-    def compiled(self, model: Model, values, view: str) -> moderngl.Program:
+    def compiled(
+        self, model: Model, values, view: str, strategy: str | None = None, sequence="random"
+    ) -> moderngl.Program:
+        """The view's program; a render view's with its strategy and sequence compiled in
+        (no per-sample branches on them)."""
         resolved = model.resolve(values)
         enums = {k: v for k, v in resolved.items() if model.params[k].kind == "enum"}
-        return self.program(model, view, enums, sampler_key(model))
+        preamble = sampler_key(model)
+        if strategy is not None:
+            preamble += f"\n#define LAB_STRATEGY {STRATEGIES.index(strategy)}"
+        if sequence == "sobol":
+            preamble += "\n#define LAB_SOBOL"
+        return self.program(model, view, enums, preamble)
 
     # -- BRDF samples, for the chi-square tests and the grader ---------------------------
     def brdf_samples(self, model, values, V, seed: int = 1, frame=None) -> np.ndarray:
@@ -233,6 +231,7 @@ class IBLRenderer(Renderer):
         n = len(inputs[0])
         width = min(max(n, 1), 1024)
         height = max(math.ceil(n / width), 1)
+        uniforms = {**self.table_uniforms(model, values), **uniforms}
         textures = []
         for unit, data in enumerate(inputs):
             padded = np.zeros((width * height, 4), np.float32)
@@ -258,6 +257,8 @@ class Progressive:
     sphere; `reset()` starts again (a slider moved). Samples are counted per pixel.
     `shape` lights one of the object view's SHAPES instead of the sphere (turned by `yaw`
     and `pitch` in radians, as that view's settings); alpha is then 1 on the object.
+    `sequence` is one of SEQUENCES: "sobol" continues each pixel's sequence from pass to
+    pass, so every prefix of it is stratified.
     """
 
     def __init__(
@@ -273,9 +274,13 @@ class Progressive:
         shape: str | None = None,
         yaw: float = 0.6,
         pitch: float = 0.5,
+        sequence: str = "random",
     ):
         if strategy not in STRATEGIES:
             raise ValueError(f"unknown strategy {strategy!r}: use one of {', '.join(STRATEGIES)}")
+        if sequence not in SEQUENCES:
+            raise ValueError(f"unknown sequence {sequence!r}: use one of {', '.join(SEQUENCES)}")
+        self.sequence = sequence
         self.renderer = renderer
         self.model = as_model(model)
         self.values = dict(values or {})
@@ -295,7 +300,12 @@ class Progressive:
         self._flag = ctx.texture((self.size, self.size), 1, dtype="f4")  # the loop guard's
         self._fbo = ctx.framebuffer(color_attachments=[self._texture, self._flag])
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
-        self.program = renderer.compiled(self.model, self.values, self.view)
+        self.program = self._compile()
+
+    def _compile(self) -> moderngl.Program:
+        return self.renderer.compiled(
+            self.model, self.values, self.view, self.strategy, self.sequence
+        )
 
     @property
     def fallback(self) -> str | None:
@@ -305,8 +315,8 @@ class Progressive:
         """Start again, with any of values, environment, strategy, rotation changed."""
         for name, value in changes.items():
             setattr(self, name, value)
-        if "values" in changes or "model" in changes:
-            self.program = self.renderer.compiled(self.model, self.values, self.view)
+        if {"values", "model", "strategy", "sequence"} & set(changes):
+            self.program = self._compile()
         self.samples = self.passes = 0
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
 
@@ -320,6 +330,8 @@ class Progressive:
             "u_strategy": STRATEGIES.index(self.strategy),
             "u_spp": spp,
             "u_frame": self.passes,
+            "u_sample0": self.samples,
+            "u_env_share": self.environment.share,
             "u_seed": self.seed,
             "u_shape": SHAPES.index(self.shape) if self.shape else 1,
             "u_yaw": self.yaw,
@@ -384,12 +396,15 @@ def render(
     seed: int = 0,
     renderer: IBLRenderer | None = None,
     shape: str | None = None,
+    sequence: str = "random",
 ) -> np.ndarray:
     """A finished IBL render of the sphere (or of the object `shape`): (size, size, 4)
     float32, row 0 at the top."""
     renderer = renderer or IBLRenderer()
     env = environment if isinstance(environment, Environment) else Environment.load(environment)
-    job = Progressive(renderer, model, values, env, strategy, size, rotation, seed, shape)
+    job = Progressive(
+        renderer, model, values, env, strategy, size, rotation, seed, shape, sequence=sequence
+    )
     try:
         return job.run(samples).image()
     finally:
@@ -404,54 +419,6 @@ def sphere_normals(size: int) -> tuple[np.ndarray, np.ndarray]:
     mask = r2 <= 1.0
     N = np.stack([x, y, np.sqrt(np.clip(1.0 - r2, 0.0, 1.0))], axis=-1)
     return N, mask
-
-
-def render_png(
-    model: Model,
-    values,
-    job,
-    out,
-    env: str = "sky",
-    strategy: str = "mis_power",
-    samples: int = 256,
-    rotation: float = 0.0,
-    shape: str = "sphere",
-) -> list[str]:
-    """`brdf-lab render --view ibl`: render, save the PNG, return the lines to print.
-    `job` is the registry's PlotJob (size, exposure); `shape` "sphere" is the lit sphere,
-    another of SHAPES the object view's shape."""
-    from lab import plots
-    from lab.errors import UsageError
-
-    if strategy not in STRATEGIES:
-        raise UsageError(f"--strategy {strategy!r}: use one of {', '.join(STRATEGIES)}")
-    if not 1 <= samples <= 1_000_000:
-        raise UsageError(f"--samples {samples} is outside 1..1000000")
-    if shape not in SHAPES:
-        raise UsageError(f"--shape {shape!r}: use one of {', '.join(repr(s) for s in SHAPES)}")
-    try:
-        environment = Environment.load(env)
-    except environments.EnvironmentError as err:
-        raise UsageError(f"--env: {err}") from None
-    lines = []
-    note = fallback(model, strategy)
-    if note:
-        lines.append(f"note: {note}")
-    target = None if shape == "sphere" else shape
-    image = render(model, values, environment, strategy, samples, job.size, rotation, shape=target)
-    if environment.name == "furnace" and target is None:
-        peak = ring_peak(image)
-        if peak > 1.01:
-            lines.append(
-                f"energy gain: the sphere reflects up to {peak:.2f}x the furnace's radiance "
-                "(a physically based BRDF stays at or below 1)"
-            )
-    plots.save_image(image[..., :3], out, job.exposure)  # the environment behind, opaque
-    lines.append(
-        f"{samples} samples/pixel, {STRATEGY_TITLES[strategy]}, environment {environment.name}"
-        + ("" if target is None else f", the {shape}")
-    )
-    return lines
 
 
 def local_view(size: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

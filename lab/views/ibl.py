@@ -15,7 +15,7 @@ TARGETS = ("sphere", "torus", "rounded box", "bumpy sphere")
 
 def plot(job: PlotJob) -> None:
     """`brdf-lab render --view ibl`: the CLI puts its --env/--strategy/... on job.ibl."""
-    from lab.ibl.integrator import render_png
+    from lab.ibl.png import render_png
 
     options = getattr(job, "ibl", None) or {}
     for line in render_png(job.model, job.values, job, job.out, **options):

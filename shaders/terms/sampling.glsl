@@ -21,6 +21,71 @@ float lab_random() {
 
 vec3 lab_random3() { return vec3(lab_random(), lab_random(), lab_random()); }
 
+// Low-discrepancy samples: Owen-scrambled Sobol' points (lab/ibl/sobol.py is the numpy
+// twin). Dimension 0 is bit reversal, 1 and 2 use the direction numbers below (Joe and
+// Kuo 2008: x + 1 with m = 1; x^2 + x + 1 with m = 1, 3). Each pixel shuffles the index
+// and scrambles every dimension with its own hash (Burley 2020, "Practical Hash-based Owen
+// Scrambling"): a shuffle maps each aligned block of 2^m indices onto another such block,
+// so every power-of-two prefix stays a scrambled (0, m, 2)-net, and pixels are independent.
+const uint LAB_SOBOL_V[64] = uint[64](
+    0x80000000u, 0xc0000000u, 0xa0000000u, 0xf0000000u, 0x88000000u, 0xcc000000u, 0xaa000000u, 0xff000000u,
+    0x80800000u, 0xc0c00000u, 0xa0a00000u, 0xf0f00000u, 0x88880000u, 0xcccc0000u, 0xaaaa0000u, 0xffff0000u,
+    0x80008000u, 0xc000c000u, 0xa000a000u, 0xf000f000u, 0x88008800u, 0xcc00cc00u, 0xaa00aa00u, 0xff00ff00u,
+    0x80808080u, 0xc0c0c0c0u, 0xa0a0a0a0u, 0xf0f0f0f0u, 0x88888888u, 0xccccccccu, 0xaaaaaaaau, 0xffffffffu,
+    0x80000000u, 0xc0000000u, 0x60000000u, 0x90000000u, 0xe8000000u, 0x5c000000u, 0x8e000000u, 0xc5000000u,
+    0x68800000u, 0x9cc00000u, 0xee600000u, 0x55900000u, 0x80680000u, 0xc09c0000u, 0x60ee0000u, 0x90550000u,
+    0xe8808000u, 0x5cc0c000u, 0x8e606000u, 0xc5909000u, 0x6868e800u, 0x9c9c5c00u, 0xeeee8e00u, 0x5555c500u,
+    0x8000e880u, 0xc0005cc0u, 0x60008e60u, 0x9000c590u, 0xe8006868u, 0x5c009c9cu, 0x8e00eeeeu, 0xc5005555u);
+
+uint lab_reverse_bits(uint x) {  // bitfieldReverse needs GLSL 4.0; this runs in 3.3 / ES 3.0
+    x = ((x >> 1u) & 0x55555555u) | ((x & 0x55555555u) << 1u);
+    x = ((x >> 2u) & 0x33333333u) | ((x & 0x33333333u) << 2u);
+    x = ((x >> 4u) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4u);
+    x = ((x >> 8u) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8u);
+    return (x >> 16u) | (x << 16u);
+}
+
+// Nested uniform scrambling of the bits of x, from the top: reversed, each bit flips by a
+// function of the bits below it only (additions and products with even constants never
+// carry downwards: a Laine-Karras style permutation), then reversed back.
+uint lab_owen(uint x, uint seed) {
+    x = lab_reverse_bits(x) + seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return lab_reverse_bits(x);
+}
+
+// The Sobol' integers of `index` in dimensions 1 and 2 (dimension 0 is lab_reverse_bits).
+uvec2 lab_sobol12(uint index) {
+    uvec2 x = uvec2(0u);
+    for (int k = 0; k < 32; ++k) {
+        if (index == 0u) break;
+        if ((index & 1u) != 0u) x ^= uvec2(LAB_SOBOL_V[k], LAB_SOBOL_V[32 + k]);
+        index >>= 1u;
+    }
+    return x;
+}
+
+float lab_unit(uint x) { return float(x >> 8u) * (1.0 / 16777216.0); }
+
+// Four scrambling keys from one seed: the index shuffle's and one per dimension.
+uvec4 lab_sobol_keys(uint seed) {
+    uint h = lab_pcg(seed);
+    return uvec4(h, lab_pcg(h ^ 0x68bc21ebu), lab_pcg(h ^ 0x02e5be93u), lab_pcg(h ^ 0x967a889bu));
+}
+
+// Point `index` of a scrambled 3D Sobol' sequence. With `shuffle` the index is first
+// permuted (keys.x; kept to 20 bits, a million samples, so the Sobol' loops stay short):
+// that pads a second sequence, independent of the first, from the same dimensions.
+vec3 lab_sobol3(uint index, uvec4 keys, bool shuffle) {
+    uint i = shuffle ? lab_owen(index, keys.x) & 0xfffffu : index;
+    uvec2 s = lab_sobol12(i);
+    return vec3(lab_unit(lab_owen(lab_reverse_bits(i), keys.y)),
+                lab_unit(lab_owen(s.x, keys.z)), lab_unit(lab_owen(s.y, keys.w)));
+}
+
 float lab_luma(vec3 c) { return dot(c, LAB_LUMA); }
 
 // Local (x, y, z) in the frame (X, Y, N).

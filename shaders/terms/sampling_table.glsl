@@ -1,0 +1,94 @@
+// Data-driven importance sampling for a model without a sampler of its own (a .brdf file,
+// a measured table, a user's shader): lab/ibl/table.py tabulates f_r cos over the
+// half-vector hemisphere for TABLE_VIEWS view angles, on the GPU (views/ibl_table.glsl),
+// and uploads per view a piecewise-constant distribution over cells of
+// (u = sqrt(theta_h / 90 deg), phi_h - phi_v): the square root puts cells close together
+// near N, where glossy lobes live (as the MERL layout does). A cell is drawn from its CDFs
+// and H uniformly over its solid angle, then L = reflect(-V, H), so
+//     p(L) = p_cell / (solid angle of the cell) / (4 V.H)
+// exactly; a share TABLE_COSINE of cosine-weighted directions covers whatever the table's
+// cells missed (a defensive mixture, Hesterberg 1995), so every direction with
+// f_r cos > 0 has p > 0 and the estimate stays unbiased.
+uniform sampler2D u_table_density;  // (TABLE_PHI, TABLE_VIEWS * TABLE_U): p_cell / solid angle
+uniform sampler2D u_table_marginal;  // (TABLE_U + 1, TABLE_VIEWS): CDF over a view's rows
+uniform sampler2D u_table_conditional;  // (TABLE_PHI + 1, TABLE_VIEWS * TABLE_U): CDF of a row
+const bool HAS_SAMPLER = true;
+const int TABLE_VIEWS = 16;
+const int TABLE_U = 32;  // a power of two (table_search halves it)
+const int TABLE_PHI = 32;  // a power of two
+const float TABLE_COSINE = 0.1;
+
+// V in the local frame and its view-angle row of the table.
+int table_view(vec3 v) {
+    float theta = atan(length(v.xy), v.z);
+    return clamp(int(theta / (0.5 * PI) * float(TABLE_VIEWS)), 0, TABLE_VIEWS - 1);
+}
+
+// (cos, sin) of V's azimuth: phi of a cell is counted from it.
+vec2 table_azimuth(vec3 v) {
+    float s = length(v.xy);
+    return s > 1e-7 ? v.xy / s : vec2(1.0, 0.0);
+}
+
+// The largest i in [0, n) with cdf[i] <= x (n a power of two): never an empty cell.
+int table_search(sampler2D cdf, int row, int n, float x) {
+    int lo = 0;
+    for (int step = n / 2; step >= 1; step /= 2) {
+        if (texelFetch(cdf, ivec2(lo + step, row), 0).r <= x) lo += step;
+    }
+    return lo;
+}
+
+// 1 - cos(theta_h) at u, theta_h = 90 deg * u^2.
+float table_versine(float u) {
+    float s = sin(0.25 * PI * u * u);
+    return 2.0 * s * s;
+}
+
+vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) {
+    if (u.z < TABLE_COSINE) return sample_cosine(u.xy, N, X, Y);
+    vec3 v = vec3(dot(V, X), dot(V, Y), dot(V, N));
+    int j = table_view(v);
+    int r = table_search(u_table_marginal, j, TABLE_U, u.x);
+    float m0 = texelFetch(u_table_marginal, ivec2(r, j), 0).r;
+    float m1 = texelFetch(u_table_marginal, ivec2(r + 1, j), 0).r;
+    float fu = clamp((u.x - m0) / max(m1 - m0, 1e-30), 0.0, 1.0);
+    int row = j * TABLE_U + r;
+    int c = table_search(u_table_conditional, row, TABLE_PHI, u.y);
+    float c0 = texelFetch(u_table_conditional, ivec2(c, row), 0).r;
+    float c1 = texelFetch(u_table_conditional, ivec2(c + 1, row), 0).r;
+    float fphi = clamp((u.y - c0) / max(c1 - c0, 1e-30), 0.0, 1.0);
+    // Uniform over the cell's solid angle: 1 - cos(theta_h) uniform between its edges,
+    // each as 2 sin^2(theta / 2) (1 - cos in float32 loses the cells next to N).
+    float w = mix(table_versine(float(r) / float(TABLE_U)),
+                  table_versine(float(r + 1) / float(TABLE_U)), fu);
+    float cos_h = 1.0 - w;
+    float sin_h = sqrt(max(w * (2.0 - w), 0.0));
+    float phi = 2.0 * PI * (float(c) + fphi) / float(TABLE_PHI);
+    vec2 a = table_azimuth(v);
+    vec2 along = cos(phi) * a + sin(phi) * vec2(-a.y, a.x);
+    vec3 h = vec3(sin_h * along, cos_h);
+    float VoH = dot(v, h);
+    if (VoH <= 0.0) return vec3(0.0);  // a failed sample: no direction, no contribution
+    return to_world(2.0 * VoH * h - v, X, Y, N);
+}
+
+float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    float p = TABLE_COSINE * pdf_cosine(L, N);
+    vec3 v = vec3(dot(V, X), dot(V, Y), dot(V, N));
+    vec3 l = vec3(dot(L, X), dot(L, Y), dot(L, N));
+    vec3 sum = l + v;
+    if (dot(sum, sum) < 1e-12) return p;
+    vec3 h = normalize(sum);
+    float VoH = dot(v, h);
+    if (h.z <= 0.0 || VoH <= 0.0) return p;
+    float u = sqrt(atan(length(h.xy), h.z) / (0.5 * PI));
+    int r = min(int(u * float(TABLE_U)), TABLE_U - 1);
+    vec2 a = table_azimuth(v);
+    float phi = atan(dot(h.xy, vec2(-a.y, a.x)), dot(h.xy, a));
+    phi = phi < 0.0 ? phi + 2.0 * PI : phi;
+    int c = min(int(phi / (2.0 * PI) * float(TABLE_PHI)), TABLE_PHI - 1);
+    int row = table_view(v) * TABLE_U + r;
+    float density = texelFetch(u_table_density, ivec2(c, row), 0).r;
+    return p + (1.0 - TABLE_COSINE) * density / (4.0 * VoH);
+}

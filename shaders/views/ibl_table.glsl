@@ -1,0 +1,43 @@
+// View (lab/ibl/table.py): the mass of f_r cos in each cell of the data-driven sampler's
+// table (terms/sampling_table.glsl), one texel per cell: column = phi cell, row = view
+// angle * TABLE_U + u cell. SUB x SUB half vectors uniform over the cell's solid angle
+// give the mean of luma(f_r) cos(theta_L) 4 V.H (the Jacobian from H to L), times the
+// cell's solid angle: the integral of f_r cos over the directions L the cell maps to.
+uniform int u_views;
+uniform int u_rows;
+uniform int u_columns;
+out vec4 frag_color;
+
+const int SUB = 4;
+
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    int j = texel.y / u_rows;
+    int r = texel.y - j * u_rows;
+    float theta_v = (float(j) + 0.5) / float(u_views) * 0.5 * PI;
+    vec3 N = vec3(0.0, 0.0, 1.0);
+    vec3 X = vec3(1.0, 0.0, 0.0);
+    vec3 Y = vec3(0.0, 1.0, 0.0);
+    vec3 V = vec3(sin(theta_v), 0.0, cos(theta_v));
+    float s0 = sin(0.25 * PI * pow(float(r) / float(u_rows), 2.0));
+    float s1 = sin(0.25 * PI * pow(float(r + 1) / float(u_rows), 2.0));
+    float w0 = 2.0 * s0 * s0;  // 1 - cos(theta_h) at the cell's edges, exact near N
+    float w1 = 2.0 * s1 * s1;
+    float dphi = 2.0 * PI / float(u_columns);
+    float total = 0.0;
+    for (int s = 0; s < SUB; ++s) {
+        for (int t = 0; t < SUB; ++t) {
+            float w = mix(w0, w1, (float(s) + 0.5) / float(SUB));
+            float cos_h = 1.0 - w;
+            float sin_h = sqrt(max(w * (2.0 - w), 0.0));
+            float phi = (float(texel.x) + (float(t) + 0.5) / float(SUB)) * dphi;
+            vec3 H = vec3(sin_h * cos(phi), sin_h * sin(phi), cos_h);
+            float VoH = dot(V, H);
+            vec3 L = 2.0 * VoH * H - V;
+            if (VoH <= 0.0 || L.z <= 0.0) continue;
+            float value = lab_luma(BRDF(L, V, N, X, Y)) * L.z * 4.0 * VoH;
+            total += isnan(value) || isinf(value) ? 0.0 : max(value, 0.0);
+        }
+    }
+    frag_color = vec4(total / float(SUB * SUB) * dphi * (w1 - w0), 0.0, 0.0, 1.0);
+}
