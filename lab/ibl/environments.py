@@ -210,18 +210,15 @@ def sampling_tables(image: np.ndarray) -> Sampling:
     )
 
 
-def mixture_share(image: np.ndarray) -> float:
-    """The mixture strategy's probability of drawing from the map: 0 for a constant map
-    (the furnace: its samples would only follow sin theta), rising to 1/2 as the light
-    gathers into small bright sources, by 1 - E[L]^2 / E[L^2] over the sphere (luminance,
-    solid-angle weights)."""
+def contrast(image: np.ndarray) -> float:
+    """1 - E[L]^2 / E[L^2] of the map's luminance over the sphere (solid-angle weights):
+    0 for a constant map (the furnace), near 1 where small bright sources hold the light
+    (the sky's sun). The "auto" strategy samples the map only where it is above 0."""
     lum = image @ np.array(LUMA, np.float32)
     weight = np.sin((np.arange(lum.shape[0]) + 0.5) / lum.shape[0] * np.pi)[:, None]
     mean = float((lum * weight).sum() / (weight.sum() * lum.shape[1]))
     square = float((lum * lum * weight).sum() / (weight.sum() * lum.shape[1]))
-    if square <= 0.0:
-        return 0.0
-    return 0.5 * max(0.0, 1.0 - mean * mean / square)
+    return max(0.0, 1.0 - mean * mean / square) if square > 0.0 else 0.0
 
 
 @dataclass
@@ -231,13 +228,13 @@ class Environment:
     image: np.ndarray
     name: str = "environment"
     tables: Sampling = field(init=False)
-    share: float = field(init=False)  # the mixture strategy's share of map samples
+    contrast: float = field(init=False)  # contrast(image)
     _textures: list = field(default_factory=list, init=False, repr=False)
 
     def __post_init__(self):
         self.image = np.ascontiguousarray(self.image, dtype=np.float32)
         self.tables = sampling_tables(self.image)
-        self.share = mixture_share(self.image)
+        self.contrast = contrast(self.image)
 
     @classmethod
     def load(cls, source, size=DEFAULT_SIZE) -> Environment:

@@ -24,7 +24,7 @@ from lab.ibl.table import TableCache
 from lab.models import SHADER_DIR, Model, Value
 from lab.render import Renderer, as_model
 
-STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power", "mixture")
+STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power", "auto")
 STRATEGY_TITLES = {
     "uniform": "uniform hemisphere",
     "cosine": "cosine-weighted",
@@ -32,8 +32,11 @@ STRATEGY_TITLES = {
     "brdf": "BRDF importance",
     "mis_balance": "MIS, balance heuristic",
     "mis_power": "MIS, power heuristic",
-    "mixture": "one-sample MIS, environment share by the map",
+    "auto": "auto: BRDF under uniform light, else MIS (power)",
 }
+# "auto" under a map whose contrast (environments.contrast) is at most this: BRDF sampling
+# alone, as the map's samples would only follow sin theta there; above it, MIS.
+UNIFORM_CONTRAST = 0.01
 # "random": PCG numbers, independent per pass (the grader's variance needs that);
 # "sobol": each pixel's own Owen-scrambled Sobol' sequence (terms/sampling.glsl).
 SEQUENCES = ("random", "sobol")
@@ -106,12 +109,19 @@ def sampler_key(model: Model) -> str:
 
 def fallback(model: Model, strategy: str) -> str | None:
     """What the view says when `strategy` needs a sampler the model lacks (else None)."""
-    if strategy not in ("brdf", "mis_balance", "mis_power", "mixture") or not tabulated(model):
+    if strategy not in ("brdf", "mis_balance", "mis_power", "auto") or not tabulated(model):
         return None
     return (
         f"{model.name} has no BRDF sampler of its own: it is sampled from a table of its "
         "f_r cos (data-driven, exact pdf)"
     )
+
+
+def chosen_strategy(strategy: str, environment: Environment) -> str:
+    """The strategy a pass runs: "auto" resolved for the environment."""
+    if strategy != "auto":
+        return strategy
+    return "brdf" if environment.contrast <= UNIFORM_CONTRAST else "mis_power"
 
 
 def insert_before_view(source: glsl.Source, view: str, text: str, label: str) -> glsl.Source:
@@ -203,7 +213,7 @@ class IBLRenderer(Renderer):
         resolved = model.resolve(values)
         enums = {k: v for k, v in resolved.items() if model.params[k].kind == "enum"}
         preamble = sampler_key(model)
-        if strategy is not None:
+        if strategy is not None:  # (not "auto": chosen_strategy resolves it)
             preamble += f"\n#define LAB_STRATEGY {STRATEGIES.index(strategy)}"
         if sequence == "sobol":
             preamble += "\n#define LAB_SOBOL"
@@ -302,9 +312,14 @@ class Progressive:
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
         self.program = self._compile()
 
+    @property
+    def chosen(self) -> str:
+        """The strategy the passes run (STRATEGIES less "auto")."""
+        return chosen_strategy(self.strategy, self.environment)
+
     def _compile(self) -> moderngl.Program:
         return self.renderer.compiled(
-            self.model, self.values, self.view, self.strategy, self.sequence
+            self.model, self.values, self.view, self.chosen, self.sequence
         )
 
     @property
@@ -315,7 +330,7 @@ class Progressive:
         """Start again, with any of values, environment, strategy, rotation changed."""
         for name, value in changes.items():
             setattr(self, name, value)
-        if {"values", "model", "strategy", "sequence"} & set(changes):
+        if {"values", "model", "strategy", "sequence", "environment"} & set(changes):
             self.program = self._compile()
         self.samples = self.passes = 0
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
@@ -327,11 +342,10 @@ class Progressive:
         uniforms = {
             "u_resolution": (float(self.size), float(self.size)),
             "u_rotation": math.radians(self.rotation),
-            "u_strategy": STRATEGIES.index(self.strategy),
+            "u_strategy": STRATEGIES.index(self.chosen),
             "u_spp": spp,
             "u_frame": self.passes,
             "u_sample0": self.samples,
-            "u_env_share": self.environment.share,
             "u_seed": self.seed,
             "u_shape": SHAPES.index(self.shape) if self.shape else 1,
             "u_yaw": self.yaw,

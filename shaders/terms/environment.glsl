@@ -16,12 +16,11 @@ uniform float u_rotation;
 #ifdef LAB_STRATEGY
 #define STRATEGY LAB_STRATEGY
 #else
-// 0 uniform, 1 cosine, 2 environment, 3 BRDF, 4 MIS balance, 5 MIS power, 6 mixture
+// 0 uniform, 1 cosine, 2 environment, 3 BRDF, 4 MIS balance, 5 MIS power
 uniform int u_strategy;
 #define STRATEGY u_strategy
 #endif
 uniform int u_sample0;  // samples per pixel before this pass: the Sobol' index of the first
-uniform float u_env_share;  // strategy 6: the probability of drawing from the environment
 
 vec2 env_uv(vec3 d) {
     float u = 0.5 + atan(d.x, -d.z) * (0.5 * INV_PI) + u_rotation * (0.5 * INV_PI);
@@ -109,8 +108,8 @@ float brdf_pdf(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     return HAS_SAMPLER ? PDF_BRDF(L, V, N, X, Y) : pdf_cosine(L, N);
 }
 
-// One estimate from the unit numbers u (the BRDF's or the strategy's direction) and ue
-// (the environment's direction in xy, and in z the mixture's choice).
+// One estimate from the unit numbers u (the BRDF's or the strategy's direction) and, for
+// MIS, ue (the environment's direction in xy).
 vec3 one_sample(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u, vec3 ue) {
     if (STRATEGY == 0) {
         return contribution(sample_uniform_hemisphere(u.xy, N, X, Y), 0.5 * INV_PI, V, N, X, Y);
@@ -124,23 +123,6 @@ vec3 one_sample(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u, vec3 ue) {
         vec3 L = sample_environment(u.xy, uv);
         vec4 e = env_lookup(uv);
         return e.a > 0.0 ? reflected(L, V, N, X, Y) * e.rgb / e.a : vec3(0.0);
-    }
-    if (STRATEGY == 6) {
-        // One-sample MIS (Veach 1997, 9.2.4): the environment with probability c, else the
-        // BRDF, weighed by the balance heuristic, i.e. by the mixture's own pdf.
-        float c = u_env_share;
-        vec3 L;
-        vec4 e;
-        if (ue.z < c) {
-            vec2 uv;
-            L = sample_environment(ue.xy, uv);
-            e = env_lookup(uv);
-        } else {
-            L = HAS_SAMPLER ? SAMPLE_BRDF(V, N, X, Y, u) : sample_cosine(u.xy, N, X, Y);
-            e = c > 0.0 ? env_lookup(env_uv(L)) : vec4(environment(L), 0.0);
-        }
-        float pdf = (1.0 - c) * brdf_pdf(L, V, N, X, Y) + c * e.a;
-        return pdf > 0.0 ? reflected(L, V, N, X, Y) * e.rgb / pdf : vec3(0.0);
     }
     // The BRDF's own sampler (cosine-weighted when the model has none).
     vec3 Lb = HAS_SAMPLER ? SAMPLE_BRDF(V, N, X, Y, u) : sample_cosine(u.xy, N, X, Y);
