@@ -1,180 +1,283 @@
-"""`brdf-lab ibl-bench`: throughput of the IBL integrator and each strategy's time to 1% error.
+"""`brdf-lab ibl-bench`: where a pass's time goes, samples per second, and each strategy's
+samples and time to 1% error, with random and low-discrepancy samples, for GGX (alpha 0.1
+and 0.5), their .brdf twins (sampled from tables) and a MERL table, under the furnace and
+the sky; then the ratios issue 28's targets name.
 
-Throughput: sample evaluations per second for a 512x512 sphere (pixels on the sphere times
-samples per pixel). Convergence: a glossy GGX (alpha = 0.1) under the sky; each strategy
-accumulates until its relative RMS error against a converged reference (MIS, power
-heuristic, many samples, another seed) is below 1%, or its time budget runs out, in which
-case the time is extrapolated with the Monte Carlo rate error ~ 1/sqrt(N) and marked so.
-The reference's own error (from its two independent halves) is taken out in quadrature.
+Samples to 1% come from convergence runs on a small sphere (`--size`: a pixel's error does
+not depend on the image size); time to 1% is those samples at the samples per second of a
+317 x 317 sphere in passes of 16, as the app runs them. With `--against DIR` (a checkout of
+an older commit) its estimator's GLSL runs beside this one's in the same process, so the
+speed-up is measured in one run.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from lab.ibl.integrator import STRATEGIES, Environment, IBLRenderer, Progressive
+from lab.ibl.convergence import (
+    TARGET,
+    Convergence,
+    converge,
+    reference_image,
+    relative_rms,
+    throughput,
+)
+from lab.ibl.integrator import (
+    SEQUENCES,
+    Environment,
+    IBLRenderer,
+    Progressive,
+    chosen_strategy,
+)
 
-GLOSSY = ("ggx", {"alpha": 0.1})
-TARGET = 0.01
-
-
-def relative_rms(image: np.ndarray, reference: np.ndarray) -> float:
-    """RMS of the difference over the sphere's pixels, relative to the reference's RMS."""
-    mask = reference[..., 3] > 0.5
-    diff = image[..., :3][mask] - reference[..., :3][mask]
-    return float(np.sqrt(np.mean(diff**2)) / np.sqrt(np.mean(reference[..., :3][mask] ** 2)))
+__all__ = ["relative_rms", "run"]
+TWIN = Path(__file__).resolve().parent / "twins" / "ggx.brdf"
+RATE_SIZE = 317
+STRATEGIES = ("brdf", "environment", "mis_power", "auto")  # what the convergence runs use
+SINGLE = ("brdf", "environment")  # single strategies the default is held against
 
 
 @dataclass
-class Convergence:
-    strategy: str
-    samples: list[int] = field(default_factory=list)
-    seconds: list[float] = field(default_factory=list)  # GPU time, error checks excluded
-    errors: list[float] = field(default_factory=list)
-
-    def time_to(self, target: float = TARGET) -> tuple[float, bool]:
-        """(seconds to reach `target`, measured?); extrapolated by 1/sqrt(N) otherwise."""
-        for seconds, error in zip(self.seconds, self.errors, strict=True):
-            if error <= target:
-                return seconds, True
-        return self.seconds[-1] * (self.errors[-1] / target) ** 2, False
+class Case:
+    label: str
+    model: object
+    values: dict
+    kind: str  # "analytic", "twin" (of the analytic case alpha), "measured"
 
 
-def converge(
-    renderer: IBLRenderer,
-    model,
-    values,
-    env: Environment,
-    strategy: str,
-    reference: np.ndarray,
-    size: int,
-    budget_s: float = 20.0,
-    target: float = TARGET,
-    reference_error: float = 0.0,
-) -> Convergence:
-    """Accumulate in doubling sample counts, recording the error after each; the
-    reference's own (independent) error is taken out in quadrature."""
-    job = Progressive(renderer, model, values, env, strategy, size, seed=1)
-    result = Convergence(strategy)
-    elapsed = 0.0
-    try:
-        while True:
-            count = max(job.samples, 1)
-            start = time.perf_counter()
-            while job.samples < 2 * count or job.samples == 0:
-                job.add(min(16, 2 * count - job.samples) if job.samples else 1)
-                if job.samples == 1:
-                    break
-            renderer.ctx.finish()
-            elapsed += time.perf_counter() - start
-            raw = relative_rms(job.image(), reference)
-            error = math.sqrt(max(raw**2 - reference_error**2, 0.0))
-            result.samples.append(job.samples)
-            result.seconds.append(elapsed)
-            result.errors.append(error)
-            if error <= target or elapsed > budget_s:
-                return result
-    finally:
-        job.release()
+def cases(renderer: IBLRenderer, quick: bool) -> list[Case]:
+    """GGX at alpha 0.1 and 0.5, their .brdf twins and a MERL-layout table of GGX."""
+    from lab.brdf_explorer import read_brdf
+    from lab.measured.model import measured_model
+    from lab.measured.tabulate import tabulate
+
+    twin = read_brdf(TWIN)
+    out = []
+    for alpha in (0.1,) if quick else (0.1, 0.5):
+        out.append(Case(f"ggx a={alpha}", "ggx", {"alpha": alpha}, "analytic"))
+        out.append(Case(f"ggx.brdf a={alpha}", twin, {"alpha": alpha}, "twin"))
+    if not quick:
+        dims = (90, 90, 180)
+        table = tabulate("ggx", {"alpha": 0.2}, dims, renderer=renderer)
+        out.append(Case("MERL table (ggx a=0.2)", measured_model(table), {}, "measured"))
+    return out
 
 
-def reference_image(renderer, model, values, env, size: int, samples: int):
-    """The converged reference and its own relative RMS error, estimated from two
-    independent halves: RMS(A - B) / 2 is the error of their mean (A + B) / 2."""
-    halves = []
-    for seed in (12345, 54321):
-        job = Progressive(renderer, model, values, env, "mis_power", size, seed=seed)
-        try:
-            halves.append(job.run(samples // 2, spp=32).image())
-        finally:
-            job.release()
-    reference = 0.5 * (halves[0] + halves[1])
-    mask = reference[..., 3] > 0.5
-    diff = halves[0][..., :3][mask] - halves[1][..., :3][mask]
-    own = float(np.sqrt(np.mean(diff**2)) / 2.0 / np.sqrt(np.mean(reference[..., :3][mask] ** 2)))
-    return reference, own
+def environments(quick: bool) -> dict[str, Environment]:
+    furnace = Environment(np.ones((16, 32, 3), np.float32), "furnace")
+    return {"furnace": furnace} if quick else {"furnace": furnace, "sky": Environment.load("sky")}
 
 
-def throughput(renderer: IBLRenderer, env: Environment, strategy: str, size=512, spp=4) -> float:
-    """Sample evaluations per second on the sphere (its pixels times samples per pixel)."""
-    job = Progressive(renderer, *GLOSSY, env, strategy, size)
+def breakdown(renderer: IBLRenderer, env: Environment, size: int = RATE_SIZE) -> list[str]:
+    """Where a pass's time goes (GGX alpha 0.1, BRDF sampling): host work, readback,
+    a pass's fixed cost, the loop guard's second target, the sample sequence."""
+    job = Progressive(renderer, "ggx", {"alpha": 0.1}, env, "brdf", size)
+    lines = []
     try:
         job.add(1)
         renderer.ctx.finish()
-        start = time.perf_counter()
-        passes = 0
-        while time.perf_counter() - start < 1.0 or passes < 2:
-            job.add(spp)
+
+        def timed(action, repeat=3) -> float:
+            start = time.perf_counter()
+            for _ in range(repeat):
+                action()
             renderer.ctx.finish()
-            passes += 1
-        seconds = time.perf_counter() - start
+            return (time.perf_counter() - start) / repeat
+
+        uniforms = timed(lambda: renderer.set_uniforms(job.program, job.model, job.values, {}), 20)
+        readback = timed(job.image, 5)
+        one, sixteen = timed(lambda: job.add(1)), timed(lambda: job.add(16))
+        per_sample = (sixteen - one) / 15.0
+        fixed = max(one - per_sample, 0.0)
+        flag = job._fbo
+        job._fbo = renderer.ctx.framebuffer(color_attachments=[job._texture])
+        no_flag = timed(lambda: job.add(16))
+        job._fbo.release()
+        job._fbo = flag
+        job.reset(sequence="sobol")
+        job.add(1)
+        sobol = timed(lambda: job.add(16))
+        lines += [
+            f"  uniform upload (host)        {uniforms * 1e3:8.3f} ms/pass",
+            f"  readback of the running sum  {readback * 1e3:8.3f} ms (once per shown frame)",
+            f"  fixed cost of a pass         {fixed * 1e3:8.1f} ms (1 spp: {one * 1e3:.1f} ms)",
+            f"  one sample per pixel         {per_sample * 1e3:8.1f} ms",
+            f"  16 spp, loop guard's target  {sixteen * 1e3:8.1f} ms; without it "
+            f"{no_flag * 1e3:.1f} ms",
+            f"  16 spp, Sobol' instead of PCG {sobol * 1e3:7.1f} ms",
+            f"  => a pass of 16 spp spends {fixed / sixteen:.0%} in fixed costs; "
+            f"of 2 spp (the old app's) {fixed / (fixed + 2 * per_sample):.0%}",
+        ]
     finally:
         job.release()
-    return math.pi / 4.0 * size * size * spp * passes / seconds
+    return lines
 
 
-def convergence_plot(runs: list[Convergence], path) -> None:
-    """Log-log error against samples per pixel, one line per strategy, with 1/sqrt(N)."""
+def against_rates(renderer, old_dir: Path, envs: dict) -> tuple[list[str], dict]:
+    """Samples/s of this checkout's estimator and of `old_dir`'s, alternated 3 times."""
+    old = IBLRenderer(renderer.ctx)
+    old.sampling_terms = old_dir / "shaders" / "terms" / "sampling.glsl"
+    old.environment_terms = old_dir / "shaders" / "terms" / "environment.glsl"
+    lines, ratios = [], {}
+    for name, env in envs.items():
+        for strategy in ("brdf", "mis_power"):
+            pairs = []
+            for _ in range(3):
+                a = throughput(old, "ggx", {"alpha": 0.1}, env, strategy)
+                b = throughput(renderer, "ggx", {"alpha": 0.1}, env, strategy)
+                pairs.append((a, b))
+            a, b = np.median(np.array(pairs), axis=0)
+            ratio = float(np.median([y / x for x, y in pairs]))
+            ratios[(name, strategy)] = ratio
+            lines.append(
+                f"  {name:8s} {strategy:10s} old {a / 1e6:6.2f}  new {b / 1e6:6.2f} M/s  "
+                f"x{ratio:.2f}"
+            )
+    return lines, ratios
+
+
+def fmt_time(seconds: float, measured: bool) -> str:
+    return f"{seconds:8.2f} s{' ' if measured else '~'}"
+
+
+def run(
+    size: int = 64,
+    reference_samples: int = 8192,
+    budget_s: float = 8.0,
+    plot=None,
+    against: Path | None = None,
+    quick: bool = False,
+) -> dict:
+    """Print the figures (and save the convergence plot to `plot`); returns them too.
+    `quick` (for the tests): GGX alpha 0.1 and its twin in the furnace only."""
+    renderer = IBLRenderer()
+    envs = environments(quick)
+    print(f"renderer: {renderer.ctx.info['GL_RENDERER']}")
+    print(f"where a pass's time goes ({RATE_SIZE}x{RATE_SIZE} sphere, ggx alpha=0.1, BRDF):")
+    for line in breakdown(renderer, envs["furnace"], 64 if quick else RATE_SIZE):
+        print(line)
+    figures: dict = {"pass": {}, "rate": {}, "runs": {}}
+    if against is not None:
+        print(f"samples/s against {against} (same process, median of 3 alternations):")
+        lines, figures["pass"] = against_rates(renderer, Path(against), envs)
+        for line in lines:
+            print(line)
+    rate_size = 64 if quick else RATE_SIZE
+    rates: dict = {}
+    for case in cases(renderer, quick):
+        for env_name, env in envs.items():
+            reference, own = reference_image(
+                renderer, case.model, case.values, env, size, reference_samples
+            )
+            print(
+                f"{case.label} under the {env_name}: samples and time to {TARGET:.0%} "
+                f"(reference's own error {own:.2%}, taken out)"
+            )
+            for strategy in STRATEGIES:
+                row = []
+                for sequence in SEQUENCES:
+                    c = converge(
+                        renderer, case.model, case.values, env, strategy, reference,
+                        size, budget_s, TARGET, own, sequence,
+                    )  # fmt: skip
+                    key = (case.label, env_name, chosen_strategy(strategy, env), sequence)
+                    if key not in rates:  # "auto" runs another strategy's program
+                        rates[key] = throughput(
+                            renderer, case.model, case.values, env, key[2], sequence, rate_size
+                        )
+                    rate = rates[key]
+                    samples, measured = c.samples_to()
+                    seconds = samples * math.pi / 4.0 * rate_size**2 / rate
+                    figures["runs"][(case.label, env_name, strategy, sequence)] = (c, seconds)
+                    figures["rate"][(case.label, env_name, strategy, sequence)] = rate
+                    row.append(
+                        f"{sequence:6s} {samples:9.0f} spp{' ' if measured else '~'}"
+                        f"{fmt_time(seconds, measured)} {rate / 1e6:5.2f} M/s"
+                    )
+                print(f"  {strategy:11s} " + " | ".join(row))
+    print("(~: extrapolated by 1/sqrt(N) past the budget; times at "
+          f"{rate_size}x{rate_size}, passes of 16 spp)")  # fmt: skip
+    figures["targets"] = targets(figures, envs, quick)
+    if plot:
+        convergence_plot(figures["runs"], plot)
+        print(f"wrote {plot}")
+    return figures
+
+
+def targets(figures: dict, envs: dict, quick: bool) -> dict:
+    """Print and return the ratios the issue's targets name."""
+    runs = figures["runs"]
+    out: dict = {}
+    print("targets:")
+    if figures["pass"]:
+        worst = min(figures["pass"].values())
+        print(f"  pass: samples/s new / old >= 1.6: x{worst:.2f} at worst")
+        out["pass"] = worst
+    alphas = (0.1,) if quick else (0.1, 0.5)
+    for alpha in alphas:
+        label = f"ggx a={alpha}"
+        for strategy in ("brdf", "auto"):
+            (cr, tr), (cs, ts) = (runs[(label, "furnace", strategy, s)] for s in SEQUENCES)
+            shared = [n for n in cs.samples if n in cr.samples]
+            worst = max(cs.error_at(n) / cr.error_at(n) for n in shared)
+            out[("ld", alpha, strategy)] = (tr / ts, worst)
+            print(
+                f"  low-discrepancy, {label} furnace {strategy}: time to 1% random / Sobol' "
+                f"= {tr / ts:.1f} (>= 2); worst error ratio Sobol'/random over "
+                f"{len(shared)} prefixes = {worst:.2f} (<= 1)"
+            )
+    for alpha in alphas:
+        for env_name in envs:
+            for strategy in ("brdf", "auto"):
+                t_a = runs[(f"ggx a={alpha}", env_name, strategy, "sobol")][1]
+                t_t = runs[(f"ggx.brdf a={alpha}", env_name, strategy, "sobol")][1]
+                out[("table", alpha, env_name, strategy)] = t_t / t_a
+                print(
+                    f"  table sampler, ggx.brdf / ggx a={alpha} {env_name} {strategy} "
+                    f"(Sobol'): time to 1% x{t_t / t_a:.2f} (<= 2)"
+                )
+    labels = sorted({key[0] for key in runs})
+    for label in labels:
+        for env_name in envs:
+            best = min(runs[(label, env_name, s, "sobol")][1] for s in SINGLE)
+            auto = runs[(label, env_name, "auto", "sobol")][1]
+            out[("default", label, env_name)] = auto / best
+            print(
+                f"  default (auto, Sobol'), {label} {env_name}: time to 1% / best single "
+                f"strategy's = {auto / best:.2f} (<= 1.5)"
+            )
+    return out
+
+
+def convergence_plot(runs: dict, path) -> None:
+    """Log-log error against samples for the first case and environment, random dashed."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    first = next(iter(runs))
+    label, env_name = first[0], first[1]
     fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=120)
-    for run in runs:
-        ax.loglog(run.samples, run.errors, marker="o", ms=3, label=run.strategy)
-    first = runs[0]
-    n = np.array([first.samples[0], max(r.samples[-1] for r in runs)], dtype=float)
-    ax.loglog(n, first.errors[0] * np.sqrt(n[0] / n), "k--", lw=1, label="1/√N")
+    for (case, env, strategy, sequence), (c, _) in runs.items():
+        if (case, env) != (label, env_name):
+            continue
+        style = "-" if sequence == "sobol" else "--"
+        ax.loglog(c.samples, c.errors, style, marker="o", ms=3, label=f"{strategy}, {sequence}")
     ax.axhline(TARGET, color="grey", lw=0.8, ls=":")
     ax.set_xlabel("samples per pixel")
     ax.set_ylabel("relative RMS error vs converged reference")
-    ax.set_title("glossy GGX (α = 0.1) under the sky")
-    ax.legend(fontsize=8)
+    ax.set_title(f"{label} under the {env_name}")
+    ax.legend(fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
 
 
-def run(size: int = 64, reference_samples: int = 8192, budget_s: float = 20.0, plot=None) -> dict:
-    """Print the figures (and save the convergence plot to `plot`); returns them too."""
-    renderer = IBLRenderer()
-    env = Environment.load("sky")
-    print(f"renderer: {renderer.ctx.info['GL_RENDERER']}")
-    print("throughput, 512x512 sphere, ggx alpha=0.1 under the sky:")
-    rates = {}
-    for strategy in STRATEGIES:
-        rates[strategy] = throughput(renderer, env, strategy)
-        print(f"  {strategy:12s} {rates[strategy] / 1e6:7.2f} M samples/s")
-    print(
-        f"time to {TARGET:.0%} relative RMS error, {size}x{size} sphere, reference "
-        f"{reference_samples} samples/pixel (MIS power):"
-    )
-    reference, own = reference_image(renderer, *GLOSSY, env, size, reference_samples)
-    print(f"  (the reference's own error, {own:.2%}, is taken out in quadrature)")
-    times, runs = {}, []
-    for strategy in STRATEGIES:
-        c = converge(renderer, *GLOSSY, env, strategy, reference, size, budget_s, TARGET, own)
-        runs.append(c)
-        seconds, measured = c.time_to()
-        samples = c.samples[-1] * (c.errors[-1] / TARGET) ** 2 if not measured else None
-        times[strategy] = seconds
-        how = "measured" if measured else f"extrapolated from {c.errors[-1]:.1%} at"
-        at = (
-            c.samples[-1]
-            if not measured
-            else next(n for n, e in zip(c.samples, c.errors, strict=True) if e <= TARGET)
-        )
-        extra = f" (~{samples:.0f} samples/pixel)" if samples else ""
-        print(f"  {strategy:12s} {seconds:9.2f} s  {how} {at} samples/pixel{extra}")
-    uniform, best = times["uniform"], min(times[s] for s in ("brdf", "mis_balance", "mis_power"))
-    print(f"importance sampling reaches {TARGET:.0%} {uniform / best:.0f}x sooner than uniform")
-    if plot:
-        convergence_plot(runs, plot)
-        print(f"wrote {plot}")
-    return {"throughput": rates, "time_to_target": times}
+__all__ += ["Convergence"]

@@ -51,15 +51,15 @@ vec4 env_lookup(vec2 uv) {
 // Solid-angle pdf of sample_environment for direction d.
 float pdf_environment(vec3 d) { return env_lookup(env_uv(d)).a; }
 
-// The first index i in [0, n) with cdf[i + 1] > x (the CDF has n + 1 entries).
+// The largest index i in [0, n) with cdf[i] <= x (the CDF has n + 1 entries, cdf[0] = 0):
+// the cell x falls in, never an empty one. The steps halve from the largest power of two
+// below n, the same count in every pixel (a loop that ends pixel by pixel costs a
+// software rasterizer the longest pixel's count anyway, and its branches).
 int find_interval(sampler2D cdf, int row, int n, float x) {
     int lo = 0;
-    int hi = n - 1;
-    for (int step = 0; step < 16; ++step) {
-        if (lo >= hi) break;
-        int mid = (lo + hi) / 2;
-        if (texelFetch(cdf, ivec2(mid + 1, row), 0).r <= x) lo = mid + 1;
-        else hi = mid;
+    for (int step = 1 << int(log2(float(n)) + 1e-3); step > 0; step >>= 1) {
+        int i = lo + step;
+        if (i < n && texelFetch(cdf, ivec2(i, row), 0).r <= x) lo = i;
     }
     return lo;
 }
