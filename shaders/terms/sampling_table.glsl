@@ -2,8 +2,10 @@
 // a measured table, a user's shader): lab/ibl/table.py tabulates f_r cos over the
 // half-vector hemisphere for TABLE_VIEWS view angles, on the GPU (views/ibl_table.glsl),
 // and uploads per view a piecewise-constant distribution over cells of
-// (u = sqrt(theta_h / 90 deg), phi_h - phi_v): the square root puts cells close together
-// near N, where glossy lobes live (as the MERL layout does). A cell is drawn from its CDFs
+// (u = (1 - cos theta_h)^(1/4), phi_h - phi_v): theta_h grows about as u^2, which puts
+// cells close together near N, where glossy lobes live (as the MERL layout's square root
+// does), with no trigonometry to find a cell. Rows of views are spaced evenly in
+// sqrt(1 - cos theta_v) (about theta_v). A cell is drawn from its CDFs
 // and H uniformly over its solid angle, then L = reflect(-V, H), so
 //     p(L) = p_cell / (solid angle of the cell) / (4 V.H)
 // exactly; a share TABLE_COSINE of cosine-weighted directions covers whatever the table's
@@ -20,8 +22,7 @@ const float TABLE_COSINE = 0.1;
 
 // V in the local frame and its view-angle row of the table.
 int table_view(vec3 v) {
-    float theta = atan(length(v.xy), v.z);
-    return clamp(int(theta / (0.5 * PI) * float(TABLE_VIEWS)), 0, TABLE_VIEWS - 1);
+    return clamp(int(sqrt(max(1.0 - v.z, 0.0)) * float(TABLE_VIEWS)), 0, TABLE_VIEWS - 1);
 }
 
 // (cos, sin) of V's azimuth: phi of a cell is counted from it.
@@ -39,10 +40,10 @@ int table_search(sampler2D cdf, int row, int n, float x) {
     return lo;
 }
 
-// 1 - cos(theta_h) at u, theta_h = 90 deg * u^2.
+// 1 - cos(theta_h) at the cell edge u.
 float table_versine(float u) {
-    float s = sin(0.25 * PI * u * u);
-    return 2.0 * s * s;
+    float u2 = u * u;
+    return u2 * u2;
 }
 
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) {
@@ -58,8 +59,8 @@ vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) {
     float c0 = texelFetch(u_table_conditional, ivec2(c, row), 0).r;
     float c1 = texelFetch(u_table_conditional, ivec2(c + 1, row), 0).r;
     float fphi = clamp((u.y - c0) / max(c1 - c0, 1e-30), 0.0, 1.0);
-    // Uniform over the cell's solid angle: 1 - cos(theta_h) uniform between its edges,
-    // each as 2 sin^2(theta / 2) (1 - cos in float32 loses the cells next to N).
+    // Uniform over the cell's solid angle: 1 - cos(theta_h) uniform between its edges (as
+    // 1 - cos, not cos: float32 would lose the cells next to N).
     float w = mix(table_versine(float(r) / float(TABLE_U)),
                   table_versine(float(r + 1) / float(TABLE_U)), fu);
     float cos_h = 1.0 - w;
@@ -82,7 +83,8 @@ float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     vec3 h = normalize(sum);
     float VoH = dot(v, h);
     if (h.z <= 0.0 || VoH <= 0.0) return p;
-    float u = sqrt(atan(length(h.xy), h.z) / (0.5 * PI));
+    float versine = dot(h.xy, h.xy) / (1.0 + h.z);  // 1 - cos(theta_h), exact near N
+    float u = sqrt(sqrt(versine));
     int r = min(int(u * float(TABLE_U)), TABLE_U - 1);
     vec2 a = table_azimuth(v);
     float phi = atan(dot(h.xy, vec2(-a.y, a.x)), dot(h.xy, a));
