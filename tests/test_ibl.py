@@ -187,7 +187,8 @@ def test_progressive_accumulation_restarts(ibl):
 
 
 def test_fallback_is_named():
-    assert fallback(load_model("oren_nayar"), "brdf").startswith("oren_nayar has no BRDF sampler")
+    note = fallback(load_model("oren_nayar"), "brdf")
+    assert note.startswith("oren_nayar has no BRDF sampler") and "table" in note
     assert fallback(load_model("ggx"), "mis_power") is None
     assert fallback(load_model("oren_nayar"), "cosine") is None
 
@@ -301,17 +302,21 @@ def test_every_model_compiles_in_the_ibl_views(ibl, name):
 
 
 def test_ibl_bench_prints_its_figures(tmp_path, capsys):
-    """A tiny run of `brdf-lab ibl-bench` (the real one takes minutes): every strategy gets a
-    throughput and a time to 1%, and the log-log plot is written."""
+    """A quick run of `brdf-lab ibl-bench` (the real one takes many minutes): the pass's
+    breakdown, samples and time to 1% per strategy and sequence, the target ratios, and
+    the log-log plot."""
     from lab.ibl import bench
 
     plot = tmp_path / "convergence.png"
-    figures = bench.run(size=16, reference_samples=256, budget_s=0.2, plot=plot)
+    figures = bench.run(size=16, reference_samples=256, budget_s=0.3, plot=plot, quick=True)
     text = capsys.readouterr().out
-    for strategy in STRATEGIES:
-        assert figures["throughput"][strategy] > 0
-        assert figures["time_to_target"][strategy] > 0
+    assert "fixed cost of a pass" in text and "Sobol' instead of PCG" in text
+    for strategy in bench.STRATEGIES:
         assert strategy in text
-    assert "sooner than uniform" in text
+        for sequence in ("random", "sobol"):
+            run, seconds = figures["runs"][("ggx a=0.1", "furnace", strategy, sequence)]
+            assert seconds > 0 and run.samples_to()[0] > 0
+    assert "time to 1% random / Sobol'" in text and "table sampler, ggx.brdf / ggx" in text
+    assert "best single strategy" in text
     with Image.open(plot) as image:
         assert image.size[0] > 400

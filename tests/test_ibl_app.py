@@ -29,7 +29,8 @@ def test_ibl_view_converges_side_by_side(qtbot, window, output_dir):
     wait_samples(qtbot, view, 32)
     assert [r.strategy for r in view.runs] == ["uniform", "mis_power"]
     assert view.runs[0].samples == view.runs[1].samples  # equal samples
-    assert "32 / 32 samples per pixel each" in view.status.text()
+    assert "32 samples per pixel each" in view.status.text()
+    assert "stopped at the cap of 32 samples/pixel" in view.status.text()
     # The estimated error falls, and MIS is far below uniform at equal samples.
     uniform, mis = (np.array(r.history) for r in view.runs)
     assert uniform[-1, 1] < uniform[0, 1]
@@ -108,3 +109,25 @@ def test_ibl_view_sample_target_and_error_ticks(qtbot, window):
     left, bottom = tick_texts(view, "left"), tick_texts(view, "bottom")
     assert left and all(t.endswith("%") for t in left), left
     assert bottom and all(t.isdigit() for t in bottom), bottom
+
+
+def test_ibl_view_refines_past_256_until_the_error_target(qtbot, window):
+    """With no sample cap, the view refines until its estimated error reaches the chosen
+    target (2%) and says so; a time budget stops a run that cannot get there."""
+    window.lab.add(load_model("ggx"), {"alpha": 0.5})
+    s = window.lab.settings
+    s.set("ibl_env", 1)  # furnace
+    s.set("ibl_stop_error", 0)  # 2%
+    view = ibl_view(qtbot, window)
+    window.settle()
+    qtbot.waitUntil(lambda: view.stopped is not None, timeout=120000)
+    assert view.stopped.startswith("done: error") and "≤ target 2.00%" in view.status.text()
+    assert view.runs[0].error <= 0.02
+    s.set("ibl_strategy", 0)  # uniform: far from 0.25% in a tenth of a second
+    s.set("ibl_stop_error", 3)
+    s.set("ibl_stop_time", 0)  # 10 s
+    window.settle()
+    view.elapsed = 9.95  # most of the budget already spent
+    qtbot.waitUntil(lambda: view.stopped is not None, timeout=60000)
+    assert view.stopped.startswith("time budget of 10 s spent")
+    assert "> target 0.25%" in view.status.text()

@@ -172,7 +172,8 @@ def grid_probabilities(
     sub x sub points per bin. For piecewise-constant pdfs (the data-driven sampler's): the
     adaptive rule above stops at cells whose coarse and fine sums agree, which a cell edge
     crossing them can fake, while a fine grid averages the edges out. It has no special
-    care for the half-vector singularity at L = -V: use it where that holds no mass."""
+    care for the half-vector singularity at L = -V (chi_square takes the adaptive rule's
+    values in the bins around it, apex_bins)."""
     nc, npf = THETA_BINS * sub, PHI_BINS * sub
     c = -1.0 + (np.arange(nc) + 0.5) * (2.0 / nc)
     p = (np.arange(npf) + 0.5) * (2.0 * math.pi / npf)
@@ -184,6 +185,16 @@ def grid_probabilities(
         mass = pdf.reshape(-1, sub, PHI_BINS, sub).sum(axis=(1, 3)) * (4.0 * math.pi / (nc * npf))
         out[start // sub : start // sub + len(mass)] = mass
     return out
+
+
+def apex_bins(V, reach: int = 1) -> np.ndarray:
+    """(THETA_BINS, PHI_BINS): the bins within `reach` bins of L = -V."""
+    ti = min(int((-V[2] + 1.0) / 2.0 * THETA_BINS), THETA_BINS - 1)
+    pi = int(math.atan2(-V[1], -V[0]) % (2.0 * math.pi) / (2.0 * math.pi) * PHI_BINS)
+    rows = np.abs(np.arange(THETA_BINS) - ti) <= reach
+    d = np.abs(np.arange(PHI_BINS) - pi)
+    cols = np.minimum(d, PHI_BINS - d) <= reach
+    return rows[:, None] & cols[None, :]
 
 
 def pdf_integral(renderer: IBLRenderer, model, values, theta_v: float = 30.0, frame=None) -> float:
@@ -242,8 +253,13 @@ def chi_square(
     unit = np.abs(length - 1.0) < 1e-3
     valid = unit & (pdf > 0.0) & np.isfinite(pdf) & np.isfinite(L).all(axis=1)
     observed = histogram(L[valid] / length[valid, None])
-    integrate = grid_probabilities if grid else bin_probabilities
-    expected = integrate(renderer, model, values, V, frame=frame) * n
+    expected = bin_probabilities(renderer, model, values, V, frame=frame)
+    if grid:  # the fine grid, but the adaptive rule where the singularity at -V lies
+        near = apex_bins(V)
+        expected = np.where(
+            near, expected, grid_probabilities(renderer, model, values, V, frame=frame)
+        )
+    expected = expected * n
     failed = float(n - valid.sum())
     statistic, dof, p = pearson(observed, expected, failed, n - expected.sum())
     return ChiSquare(statistic, dof, p, int(failed), observed, expected, int(n - unit.sum()))

@@ -46,12 +46,15 @@ def furnace(
     size: int = 64,
     strategy: str = "brdf",
     renderer: IBLRenderer | None = None,
+    sequence: str = "random",
 ) -> FurnaceResult:
     """Render `model` in the white furnace and compare with its albedo view, bin by bin."""
     renderer = renderer or IBLRenderer()
     model = as_model(model)
     env = Environment(np.ones((16, 32, 3), np.float32), "furnace")
-    image = render(model, values, env, strategy, samples, size, renderer=renderer)
+    image = render(
+        model, values, env, strategy, samples, size, renderer=renderer, sequence=sequence
+    )
     return against_albedo(image, model, values, renderer)
 
 

@@ -308,7 +308,9 @@ class Progressive:
         ctx = renderer.ctx
         self._texture = ctx.texture((self.size, self.size), 4, dtype="f4")
         self._flag = ctx.texture((self.size, self.size), 1, dtype="f4")  # the loop guard's
-        self._fbo = ctx.framebuffer(color_attachments=[self._texture, self._flag])
+        # Only an exercise's guarded sampler needs the guard's target: blending a second
+        # float target costs llvmpipe a share of every pass (ibl-bench measures it).
+        self._fbo = self._target()
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
         self.program = self._compile()
 
@@ -316,6 +318,10 @@ class Progressive:
     def chosen(self) -> str:
         """The strategy the passes run (STRATEGIES less "auto")."""
         return chosen_strategy(self.strategy, self.environment)
+
+    def _target(self) -> moderngl.Framebuffer:
+        flag = [self._flag] if guarded(self.model) else []
+        return self.renderer.ctx.framebuffer(color_attachments=[self._texture, *flag])
 
     def _compile(self) -> moderngl.Program:
         return self.renderer.compiled(
@@ -332,6 +338,11 @@ class Progressive:
             setattr(self, name, value)
         if {"values", "model", "strategy", "sequence", "environment"} & set(changes):
             self.program = self._compile()
+        if "model" in changes:
+            if self.renderer.ctx.fbo is self._fbo:
+                self.renderer.target(1, 1).use()
+            self._fbo.release()
+            self._fbo = self._target()
         self.samples = self.passes = 0
         self._fbo.clear(0.0, 0.0, 0.0, 0.0)
 

@@ -5,12 +5,15 @@ strategy at equal samples, with the estimated error against samples on a log-log
 The error needs no reference: each strategy runs as two independent halves (different
 seeds), and RMS(A - B) / 2 / RMS((A + B) / 2) estimates the relative RMS error of their
 mean. Passes run from the view's own timer while it is shown, so the window's refinement
-(and the tests' flush) never waits for convergence.
+(and the tests' flush) never waits for convergence. They go on until that estimate is at
+the chosen error, or the time budget is spent, or the samples/pixel cap is reached, and
+the status line says which; a pass's size adapts to take about PASS_SECONDS.
 """
 
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -41,10 +44,21 @@ from lab.ibl.integrator import (
     ring_peak,
 )
 from lab.models import ModelError
-from lab.views.ibl import COMPARE, ENVIRONMENTS, STRATEGIES, TARGETS
+from lab.views.ibl import (
+    COMPARE,
+    ENVIRONMENTS,
+    SEQUENCE_TITLES,
+    SEQUENCES,
+    STOP_ERRORS,
+    STOP_SECONDS,
+    STRATEGIES,
+    TARGETS,
+)
 
-SIZE = 192  # pixels per sphere: llvmpipe manages a few passes a second at this size
-PASS_SPP = 2
+SIZE = 192  # pixels per sphere
+PASS_SECONDS = 0.1  # a step of passes this long keeps the window responsive
+MAX_PASS_SPP = 64
+MIN_SAMPLES_TO_STOP = 32  # per half: the error estimate of fewer is too noisy to trust
 COLORS = ("#ffb000", "#4aa3ff")
 SAMPLE_TARGETS = (16, 64, 256, 1024, 4096, 16384)  # the target menu's choices (per pixel)
 
@@ -127,7 +141,18 @@ class SamplesCombo(QComboBox):
 class Run:
     """One strategy as two independent progressive halves."""
 
-    def __init__(self, renderer, model, values, env, strategy, size, shape=None, turn=(0.6, 0.5)):
+    def __init__(
+        self,
+        renderer,
+        model,
+        values,
+        env,
+        strategy,
+        size,
+        shape=None,
+        turn=(0.6, 0.5),
+        sequence="random",
+    ):
         self.halves = [
             Progressive(
                 renderer,
@@ -140,6 +165,7 @@ class Run:
                 shape=shape,
                 yaw=turn[0],
                 pitch=turn[1],
+                sequence=sequence,
             )
             for seed in (11, 29)
         ]
@@ -165,6 +191,11 @@ class Run:
                 self.history.append((self.samples, float(error / rms)))
         return mean
 
+    @property
+    def error(self) -> float | None:
+        """The latest estimate of the relative RMS error (None before the first image)."""
+        return self.history[-1][1] if self.history else None
+
     def release(self) -> None:
         for half in self.halves:
             half.release()
@@ -185,6 +216,9 @@ class IBLView(View):
             SettingCombo(s, "ibl_strategy", STRATEGIES),
             SettingCombo(s, "ibl_compare", COMPARE),
             SettingCombo(s, "ibl_target", TARGETS),
+            SettingCombo(s, "ibl_sequence", SEQUENCE_TITLES),
+            SettingCombo(s, "ibl_stop_error", [f"until {e * 100:g}%" for e in STOP_ERRORS]),
+            SettingCombo(s, "ibl_stop_time", ["or 10 s", "or 1 min", "or 5 min", "or 30 min"]),
         ]
         for combo in combos:
             combo.setSizeAdjustPolicy(
@@ -196,12 +230,19 @@ class IBLView(View):
         self.open_button.clicked.connect(self.open_file)
         combos[3].setToolTip("light the sphere, or the object view's shape (its yaw and pitch)")
         self.samples = SamplesCombo(s)
+        combos[4].setToolTip("random numbers, or each pixel's scrambled Sobol' sequence")
+        combos[5].setToolTip("refine until the estimated error is this low...")
+        combos[6].setToolTip("...or until this much time is spent")
         for widget in (combos[3], combos[0], self.open_button, combos[1], combos[2]):
             self.tools.addWidget(widget)
+        for combo in combos[4:]:  # the second row: how it refines, and when it stops
+            combo.setMinimumContentsLength(4)
         second = QHBoxLayout()
+        for combo in combos[4:]:
+            second.addWidget(combo)
         second.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
         second.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
-        second.addWidget(QLabel("target"))
+        second.addWidget(QLabel("at most"))
         second.addWidget(self.samples)
         self.second = second
         self.layout_.addLayout(second)
@@ -233,6 +274,9 @@ class IBLView(View):
         self.timer = QTimer(self)
         self.timer.setSingleShot(True)
         self.timer.timeout.connect(self.step)
+        self.pass_spp = 1
+        self.elapsed = 0.0  # seconds of passes since the last restart
+        self.stopped: str | None = None  # why refinement stopped (None: still refining)
 
     def resizeEvent(self, event) -> None:
         wide = self.width() > 1.3 * self.height()
@@ -288,6 +332,9 @@ class IBLView(View):
             tuple(self.strategies()),
             s["ibl_rotation"],
             s["ibl_samples"],
+            s["ibl_sequence"],
+            s["ibl_stop_error"],
+            s["ibl_stop_time"],
             target,
             *turn,
         )
@@ -319,6 +366,7 @@ class IBLView(View):
             run.release()
         self.runs = []
         self.plot.clear()
+        self.pass_spp, self.elapsed, self.stopped = 1, 0.0, None
         state = self.lab.selected
         if state is None:
             self.note = "add a model to light it"
@@ -336,6 +384,7 @@ class IBLView(View):
                     SIZE,
                     self.target(),
                     (s["yaw"], s["pitch"]),
+                    SEQUENCES[s["ibl_sequence"]],
                 )
                 for half in run.halves:
                     half.rotation = s["ibl_rotation"]
@@ -348,16 +397,41 @@ class IBLView(View):
         self.note = "; ".join(dict.fromkeys(notes))
         self.step()
 
+    def stop_reason(self) -> str | None:
+        """Why refinement is over: the error target, the time budget or the sample cap
+        (None: go on). The error is the first run's estimate."""
+        s = self.lab.settings
+        run = self.runs[0]
+        goal, budget = STOP_ERRORS[s["ibl_stop_error"]], STOP_SECONDS[s["ibl_stop_time"]]
+        error = run.error
+        if run.samples >= s["ibl_samples"]:
+            return f"stopped at the cap of {s['ibl_samples']} samples/pixel"
+        if error is not None and error <= goal and run.samples >= 2 * MIN_SAMPLES_TO_STOP:
+            return f"done: error {error:.2%} ≤ target {goal:.2%} in {self.elapsed:.1f} s"
+        if self.elapsed >= budget:
+            at = f", error {error:.2%} > target {goal:.2%}" if error is not None else ""
+            return f"time budget of {budget:.0f} s spent{at}"
+        return None
+
     def step(self) -> None:
-        """One pass for each run, then the next, until the sample target."""
-        target = self.lab.settings["ibl_samples"]
-        if not self.runs or not self.is_shown():
+        """One pass for each run, then the next, until stop_reason says why not."""
+        cap = self.lab.settings["ibl_samples"]
+        if not self.runs or not self.is_shown() or self.stopped:
             return
-        if self.runs[0].samples < target:
-            for run in self.runs:
-                run.add(min(PASS_SPP, max((target - run.samples) // 2, 1)))
+        start = time.perf_counter()
+        for run in self.runs:
+            run.add(max(min(self.pass_spp, (cap - run.samples) // 2), 1))
+        self.gl.ctx.finish()
+        seconds = time.perf_counter() - start
+        self.elapsed += seconds
+        # Passes of about PASS_SECONDS: a pass has a fixed cost, so short ones waste time.
+        scale = min(max(PASS_SECONDS / max(seconds, 1e-3), 0.5), 2.0)
+        self.pass_spp = int(min(max(round(self.pass_spp * scale), 1), MAX_PASS_SPP))
+        self.show_images()  # the error estimate the stop reads comes from here
+        self.stopped = self.stop_reason()
+        if self.stopped:
             self.show_images()
-        if self.runs[0].samples < target:
+        else:
             self.timer.start(0)
 
     def show_images(self) -> None:
@@ -370,16 +444,32 @@ class IBLView(View):
             shown[..., 3] = 1.0  # the environment behind the sphere
             if env.name == "furnace" and self.target() is None:
                 shown = self.mark_gain(shown)
-            images.append((tonemap(shown, s["ibl_exposure"], 2.2), STRATEGY_TITLES[run.strategy]))
+            title = STRATEGY_TITLES[run.halves[0].chosen]
+            if run.strategy == "auto":
+                title = f"auto: {title}"
+            images.append((tonemap(shown, s["ibl_exposure"], 2.2), title))
             texts.append(self.gain_text(image, env))
         self.canvas.images = [(img, cap, COLORS[i]) for i, (img, cap) in enumerate(images)]
         self.canvas.update()
         self.draw_plot()
         count = self.runs[0].samples if self.runs else 0
-        parts = [f"{count} / {s['ibl_samples']} samples per pixel"]
+        parts = [f"{count} samples per pixel"]
+        short = [f"{count} spp"]
         if len(self.runs) > 1:
             parts[0] += " each (equal samples)"
-        short = [f"{count}/{s['ibl_samples']} spp"] + [brief for _, brief in texts if brief]
+        if self.runs:
+            error = self.runs[0].error
+            goal = STOP_ERRORS[s["ibl_stop_error"]]
+            parts.append(
+                self.stopped
+                or (
+                    f"refining: error {error:.2%} → {goal:.2%}" if error is not None else "refining"
+                )
+                + f", {self.elapsed:.1f} of {STOP_SECONDS[s['ibl_stop_time']]:.0f} s"
+            )
+            if error is not None:
+                short.append(f"{error:.1%}" + (" done" if self.stopped else ""))
+        short += [brief for _, brief in texts if brief]
         parts += [t for t, _ in texts if t] + ([self.note] if self.note else [])
         self.status.short = " · ".join(dict.fromkeys(short))
         self.status.setText(" · ".join(dict.fromkeys(parts)))
