@@ -47,6 +47,10 @@ LAYERS = {  # module -> layer; a feature package's modules default to the top la
     "lab.ibl.chisquare": 2,
     "lab.ibl.bench": 2,
     "lab.ibl.figures": 2,
+    "lab.ibl.convergence": 2,
+    "lab.ibl.png": 2,
+    "lab.ibl.sobol": 2,
+    "lab.ibl.table": 2,
     "lab.cli": 3,
 }
 TOP = 4

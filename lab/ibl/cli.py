@@ -21,7 +21,9 @@ def cmd_ibl_bench(args) -> int:
                 f"--against {args.against}: no shaders/terms/environment.glsl there: give a "
                 "checkout of brdf-lab (e.g. 'git worktree add /tmp/old <commit>')"
             )
-    bench.run(args.size, args.reference, args.budget, args.plot, against, args.quick)
+    bench.run(
+        args.size, args.reference, args.budget, args.plot, against, args.quick, args.max_samples
+    )
     return 0
 
 

@@ -85,7 +85,8 @@ def converge(
     max_samples: int = 1 << 16,
 ) -> Convergence:
     """Accumulate up to each checkpoint, recording the error there, until the error is
-    under `target` (and one checkpoint more, to see the slope) or the budget is spent."""
+    under `target` (and one checkpoint more, to see the slope), or `max_samples`, or the
+    time budget is spent."""
     job = Progressive(renderer, model, values, env, strategy, size, seed=1, sequence=sequence)
     result = Convergence(strategy, sequence)
     elapsed = 0.0

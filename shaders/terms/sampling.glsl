@@ -77,10 +77,10 @@ uvec4 lab_sobol_keys(uint seed) {
 }
 
 // Point `index` of a scrambled 3D Sobol' sequence. With `shuffle` the index is first
-// permuted (keys.x; kept to 20 bits, a million samples, so the Sobol' loops stay short):
-// that pads a second sequence, independent of the first, from the same dimensions.
+// permuted (keys.x; kept to 16 bits, so the Sobol' loop stays short: prefixes up to
+// 65536 samples stay nets): that pads a second sequence, independent of the first.
 vec3 lab_sobol3(uint index, uvec4 keys, bool shuffle) {
-    uint i = shuffle ? lab_owen(index, keys.x) & 0xfffffu : index;
+    uint i = shuffle ? lab_owen(index, keys.x) & 0xffffu : index;
     uvec2 s = lab_sobol12(i);
     return vec3(lab_unit(lab_owen(lab_reverse_bits(i), keys.y)),
                 lab_unit(lab_owen(s.x, keys.z)), lab_unit(lab_owen(s.y, keys.w)));
