@@ -36,7 +36,12 @@ def register(sub) -> None:
     p.add_argument(
         "--reference", type=int, default=8192, help="samples/pixel of the converged reference"
     )
-    p.add_argument("--budget", type=float, default=8.0, help="seconds per run before extrapolating")
+    p.add_argument(
+        "--budget", type=float, default=60.0, help="seconds per run before extrapolating"
+    )
+    p.add_argument(
+        "--max-samples", type=int, default=4096, help="samples/pixel per run before extrapolating"
+    )
     p.add_argument("--plot", metavar="OUT.png", help="save the log-log convergence plot")
     p.add_argument(
         "--against", metavar="DIR", help="an older checkout: time its pass beside this one's"
