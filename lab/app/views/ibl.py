@@ -345,9 +345,12 @@ class IBLView(View):
         return None if chosen == "sphere" else chosen
 
     def request(self) -> None:
-        request = getattr(self.window(), "request", None)
-        if request is not None:
-            request()
+        """Ask the main window for a frame (a floating dock's window() is the dock)."""
+        widget = self.parentWidget()
+        while widget is not None and not hasattr(widget, "request"):
+            widget = widget.parentWidget()
+        if widget is not None:
+            widget.request()
 
     # -- drawing --------------------------------------------------------------------------
     def draw(self, fast: bool) -> bool:
