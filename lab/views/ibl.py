@@ -9,7 +9,7 @@ from lab.views import PlotJob, Setting, ViewSpec
 ENVIRONMENTS = ("sky", "furnace", "studio", "grey_room")
 STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power", "auto")
 SEQUENCES = ("random", "sobol")  # lab.ibl.integrator.SEQUENCES
-SEQUENCE_TITLES = ("random (PCG)", "Sobol' (scrambled)")
+SEQUENCE_TITLES = ("random", "Sobol'")
 # When the view stops refining: an estimated error reached, or a time spent (or the
 # samples/pixel cap, ibl_samples).
 STOP_ERRORS = (0.02, 0.01, 0.005, 0.0025)
