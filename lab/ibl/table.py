@@ -43,8 +43,8 @@ def cell_solid_angles() -> np.ndarray:
 @dataclass
 class Table:
     """One model's sampling table: density (VIEWS * ROWS, COLUMNS) per half-vector solid
-    angle, the marginal CDFs (VIEWS, ROWS + 1) and conditional CDFs (VIEWS * ROWS,
-    COLUMNS + 1)."""
+    angle, and alias tables (probability, alias) for the rows of each view (VIEWS, ROWS, 2)
+    and the cells of each row (VIEWS * ROWS, COLUMNS, 2)."""
 
     density: np.ndarray
     marginal: np.ndarray
@@ -64,25 +64,21 @@ class Table:
         p = m / m.sum(axis=(1, 2), keepdims=True)
         density = p / cell_solid_angles()[None, :, None]
         rows = p.sum(axis=2)
-        marginal = np.concatenate([np.zeros((VIEWS, 1)), np.cumsum(rows, axis=1)], axis=1)
-        marginal /= marginal[:, -1:]
         within = np.where(rows[..., None] > 0.0, p / np.maximum(rows[..., None], 1e-300), 1.0)
-        conditional = np.concatenate(
-            [np.zeros((VIEWS, ROWS, 1)), np.cumsum(within, axis=2)], axis=2
-        )
-        conditional /= conditional[..., -1:]
         return cls(
             density.reshape(VIEWS * ROWS, COLUMNS).astype(np.float32),
-            marginal.astype(np.float32),
-            conditional.reshape(VIEWS * ROWS, COLUMNS + 1).astype(np.float32),
+            alias_tables(rows).astype(np.float32),
+            alias_tables(within.reshape(VIEWS * ROWS, COLUMNS)).astype(np.float32),
         )
 
     def bind(self, ctx: moderngl.Context) -> dict:
         """Upload (once) and bind the three textures; the uniforms that name their units."""
         if not self._textures:
             for array in (self.density, self.marginal, self.conditional):
-                h, w = array.shape
-                texture = ctx.texture((w, h), 1, np.ascontiguousarray(array), dtype="f4")
+                h, w = array.shape[:2]
+                components = 1 if array.ndim == 2 else array.shape[2]
+                data = np.ascontiguousarray(array)
+                texture = ctx.texture((w, h), components, data, dtype="f4")
                 texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
                 self._textures.append(texture)
         for unit, texture in enumerate(self._textures):
@@ -97,6 +93,30 @@ class Table:
         for texture in self._textures:
             texture.release()
         self._textures.clear()
+
+
+def alias_tables(weights: np.ndarray) -> np.ndarray:
+    """(..., n, 2): for each row of `weights` (..., n), Walker's alias table by Vose's
+    method (Vose 1991): bin i keeps its own cell with probability [i, 0] and gives the rest
+    to cell [i, 1], so that cell k is drawn with probability weights[k] / sum. A row with
+    no weight is uniform."""
+    w = np.asarray(weights, np.float64)
+    flat = w.reshape(-1, w.shape[-1])
+    n = flat.shape[1]
+    out = np.zeros((flat.shape[0], n, 2))
+    for index, row in enumerate(flat):
+        total = row.sum()
+        scaled = row * (n / total) if total > 0.0 else np.ones(n)
+        prob, alias = np.ones(n), np.arange(n, dtype=np.float64)
+        small = [i for i in range(n) if scaled[i] < 1.0]
+        large = [i for i in range(n) if scaled[i] >= 1.0]
+        while small and large:
+            s, g = small.pop(), large.pop()
+            prob[s], alias[s] = scaled[s], g
+            scaled[g] -= 1.0 - scaled[s]
+            (small if scaled[g] < 1.0 else large).append(g)
+        out[index, :, 0], out[index, :, 1] = prob, alias  # leftovers keep prob 1 (rounding)
+    return out.reshape(*w.shape, 2)
 
 
 def masses(renderer, model, values) -> np.ndarray:

@@ -5,19 +5,20 @@
 // (u = (1 - cos theta_h)^(1/4), phi_h - phi_v): theta_h grows about as u^2, which puts
 // cells close together near N, where glossy lobes live (as the MERL layout's square root
 // does), with no trigonometry to find a cell. Rows of views are spaced evenly in
-// sqrt(1 - cos theta_v) (about theta_v). A cell is drawn from its CDFs
+// sqrt(1 - cos theta_v) (about theta_v). A row, then a cell of it, is drawn by the alias
+// method (one texel each: a CDF search took ten dependent fetches)
 // and H uniformly over its solid angle, then L = reflect(-V, H), so
 //     p(L) = p_cell / (solid angle of the cell) / (4 V.H)
 // exactly; a share TABLE_COSINE of cosine-weighted directions covers whatever the table's
 // cells missed (a defensive mixture, Hesterberg 1995), so every direction with
 // f_r cos > 0 has p > 0 and the estimate stays unbiased.
 uniform sampler2D u_table_density;  // (TABLE_PHI, TABLE_VIEWS * TABLE_U): p_cell / solid angle
-uniform sampler2D u_table_marginal;  // (TABLE_U + 1, TABLE_VIEWS): CDF over a view's rows
-uniform sampler2D u_table_conditional;  // (TABLE_PHI + 1, TABLE_VIEWS * TABLE_U): CDF of a row
+uniform sampler2D u_table_marginal;  // (TABLE_U, TABLE_VIEWS): alias table of a view's rows
+uniform sampler2D u_table_conditional;  // (TABLE_PHI, TABLE_VIEWS * TABLE_U): of a row's cells
 const bool HAS_SAMPLER = true;
 const int TABLE_VIEWS = 16;
-const int TABLE_U = 32;  // a power of two (table_search halves it)
-const int TABLE_PHI = 32;  // a power of two
+const int TABLE_U = 32;
+const int TABLE_PHI = 32;
 const float TABLE_COSINE = 0.1;
 
 // V in the local frame and its view-angle row of the table.
@@ -31,13 +32,20 @@ vec2 table_azimuth(vec3 v) {
     return s > 1e-7 ? v.xy / s : vec2(1.0, 0.0);
 }
 
-// The largest i in [0, n) with cdf[i] <= x (n a power of two): never an empty cell.
-int table_search(sampler2D cdf, int row, int n, float x) {
-    int lo = 0;
-    for (int step = n / 2; step >= 1; step /= 2) {
-        if (texelFetch(cdf, ivec2(lo + step, row), 0).r <= x) lo += step;
+// Walker's alias method: x picks bin i = floor(x n), which keeps its own cell with
+// probability prob[i] and otherwise gives the alias's; what is left of x is uniform in the
+// chosen cell (`frac`).
+int table_pick(sampler2D alias, int row, int n, float x, out float frac) {
+    float t = x * float(n);
+    int i = min(int(t), n - 1);
+    float f = t - float(i);
+    vec2 entry = texelFetch(alias, ivec2(i, row), 0).rg;  // (prob, alias)
+    if (f < entry.x) {
+        frac = clamp(f / entry.x, 0.0, 1.0);
+        return i;
     }
-    return lo;
+    frac = clamp((f - entry.x) / max(1.0 - entry.x, 1e-30), 0.0, 1.0);
+    return int(entry.y);
 }
 
 // 1 - cos(theta_h) at the cell edge u.
@@ -50,15 +58,10 @@ vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) {
     if (u.z < TABLE_COSINE) return sample_cosine(u.xy, N, X, Y);
     vec3 v = vec3(dot(V, X), dot(V, Y), dot(V, N));
     int j = table_view(v);
-    int r = table_search(u_table_marginal, j, TABLE_U, u.x);
-    float m0 = texelFetch(u_table_marginal, ivec2(r, j), 0).r;
-    float m1 = texelFetch(u_table_marginal, ivec2(r + 1, j), 0).r;
-    float fu = clamp((u.x - m0) / max(m1 - m0, 1e-30), 0.0, 1.0);
+    float fu, fphi;
+    int r = table_pick(u_table_marginal, j, TABLE_U, u.x, fu);
     int row = j * TABLE_U + r;
-    int c = table_search(u_table_conditional, row, TABLE_PHI, u.y);
-    float c0 = texelFetch(u_table_conditional, ivec2(c, row), 0).r;
-    float c1 = texelFetch(u_table_conditional, ivec2(c + 1, row), 0).r;
-    float fphi = clamp((u.y - c0) / max(c1 - c0, 1e-30), 0.0, 1.0);
+    int c = table_pick(u_table_conditional, row, TABLE_PHI, u.y, fphi);
     // Uniform over the cell's solid angle: 1 - cos(theta_h) uniform between its edges (as
     // 1 - cos, not cos: float32 would lose the cells next to N).
     float w = mix(table_versine(float(r) / float(TABLE_U)),
