@@ -331,3 +331,11 @@ def test_ibl_bench_prints_its_figures(tmp_path, capsys):
     assert "best single strategy" in text
     with Image.open(plot) as image:
         assert image.size[0] > 400
+
+
+def test_ibl_bench_names_a_wrong_against_folder(tmp_path, capsys):
+    from lab.cli import main
+
+    code = main(["ibl-bench", "--quick", "--against", str(tmp_path)])
+    assert code == 2
+    assert "no shaders/terms/environment.glsl there" in capsys.readouterr().err
