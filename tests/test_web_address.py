@@ -48,9 +48,9 @@ def test_dragged_slider_updates_the_address_a_few_times_and_at_the_end(page):
 
 def test_single_actions_update_the_address_at_once(page):
     page.evaluate("document.querySelector('#polar-log').click()")
-    assert "log=1" in page.evaluate("location.hash")
+    assert "polar_log=1" in page.evaluate("location.hash")
     page.evaluate("document.querySelector('#polar-log').click()")
-    assert "log=1" not in page.evaluate("location.hash")
+    assert "polar_log=1" not in page.evaluate("location.hash")
     value = page.evaluate("brdfLab.moveSlider(0, 'ke', 420)")  # the test API: at once
     assert f"ke={value:g}" in page.evaluate("location.hash")
     assert page.errors == []

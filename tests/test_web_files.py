@@ -100,7 +100,7 @@ def test_merl_table_renders_like_desktop(page, renderer, table_file):
     model = measured_model(read_merl(table_file))
     theta_o = np.arange(-90, 91)
     # Out of the plane of incidence (there phi_d is 90 deg, a bin edge, everywhere).
-    page.evaluate("brdfLab.setSettings({phiO: 35})")
+    page.evaluate("brdfLab.setSettings({phi_o: 35})")
     V = direction(np.abs(theta_o), np.where(theta_o >= 0, LIGHT[1] + 180, LIGHT[1]) + 35)
     L = np.repeat(direction(*LIGHT)[None], 181, axis=0)
     # Nearest jumps at bin edges, where two rasterizers may round either way: compared
@@ -123,7 +123,7 @@ def test_merl_table_renders_like_desktop(page, renderer, table_file):
         desktop = renderer.probe(model, values, L, V)
         assert lobe.max() > 0.1
         assert_close(lobe[inside], desktop[inside], f"measured polar, {interpolation}")
-    page.evaluate("brdfLab.setSettings({phiO: 0})")
+    page.evaluate("brdfLab.setSettings({phi_o: 0})")
     page.evaluate(f"() => brdfLab.state.panels[{panel}].root.querySelector('button.close').click()")
     assert page.errors == []
 

@@ -38,7 +38,7 @@ def web_ibl(page, model: str, values: dict, environment: str, strategy: str, sam
     """The page's IBL mean after `samples` per pixel: (SIZE, SIZE, 4), row 0 at the top."""
     page.evaluate(
         """async ([model, values, environment, strategy]) => {
-            const { IBL } = await import('./ibl.js');
+            const { IBL } = await import('./views/ibl.js');
             Object.assign(IBL, { environment, strategy, rotation: 0 });
             brdfLab.setModel(0, model, values);
             brdfLab.panel(0).extra.ibl.restart();

@@ -149,7 +149,7 @@ def test_reset_restores_the_defaults(browser):
         page.page.click("#reset")
         assert page.js("brdfLab.state.lights.length") == 1
         assert page.js("brdfLab.values(0).ke") == 50
-        assert page.js("brdfLab.state.exposure") == 0
+        assert page.js("brdfLab.state.settings.exposure") == 0
         np.testing.assert_array_equal(page.sphere(), before)
         assert "ke=" not in page.js("location.hash")
     finally:

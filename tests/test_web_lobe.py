@@ -45,19 +45,19 @@ def hex_rgb(text: str) -> tuple[float, float, float]:
     ("name", "values", "settings"),
     [
         ("phong", {"ke": 30.0}, {}),
-        ("cook_torrance", {"m": 0.25}, {"polarLog": True}),
-        ("ward", {"alpha_x": 0.4, "alpha_y": 0.1}, {"cosWeighted": True}),
+        ("cook_torrance", {"m": 0.25}, {"polar_log": True}),
+        ("ward", {"alpha_x": 0.4, "alpha_y": 0.1}, {"polar_cos": True}),
     ],
 )
 def test_lobe_matches_desktop(page, renderer, name, values, settings, output_dir):
     page.evaluate("([n, v]) => brdfLab.setModel(0, n, v)", [name, values])
-    settings = {"polarLog": False, "cosWeighted": False, **settings}
+    settings = {"polar_log": False, "polar_cos": False, **settings}
     page.evaluate("s => brdfLab.setSettings(s)", settings)
-    page.evaluate("brdfLab.setSettings({lobeYaw: -0.9, lobePitch: 0.45, lobeZoom: 2})")
+    page.evaluate("brdfLab.setSettings({lobe_yaw: -0.9, lobe_pitch: 0.45, lobe_zoom: 2})")
     page.evaluate("brdfLab.setViews(['lobe3d'])")
     assert page.evaluate("brdfLab.errors(0)") == ""
     web, out = read(page)
-    log, cos = settings["polarLog"], settings["cosWeighted"]
+    log, cos = settings["polar_log"], settings["polar_cos"]
     model = load_model(name)
     peak = renderer.lobe_peak(model, values, *LIGHT, cos, LOBE_GRID)
     assert out["peak"] == pytest.approx(list(peak), rel=REL_TOL, abs=1e-7)
@@ -96,8 +96,8 @@ def test_lobe_matches_desktop(page, renderer, name, values, settings, output_dir
 
 def test_drag_orbits_and_models_share_a_scale(page, renderer):
     page.evaluate("brdfLab.setModel(0, 'phong', {ke: 30})")
-    page.evaluate("brdfLab.setSettings({polarLog: false, cosWeighted: false})")
-    page.evaluate("brdfLab.setSettings({lobeYaw: -0.6, lobePitch: 0.35, lobeZoom: 1})")
+    page.evaluate("brdfLab.setSettings({polar_log: false, polar_cos: false})")
+    page.evaluate("brdfLab.setSettings({lobe_yaw: -0.6, lobe_pitch: 0.35, lobe_zoom: 1})")
     page.evaluate("brdfLab.setViews(['lobe3d'])")
     box = page.locator("canvas.lobe3d").first.bounding_box()
     x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
@@ -106,7 +106,7 @@ def test_drag_orbits_and_models_share_a_scale(page, renderer):
     page.mouse.move(x + box["width"] / 4, y, steps=4)
     page.mouse.up()
     page.evaluate("brdfLab.renderNow()")
-    yaw = page.evaluate("brdfLab.state.lobeYaw")
+    yaw = page.evaluate("brdfLab.state.settings.lobe_yaw")
     assert yaw == pytest.approx(-0.6 + np.pi / 4, abs=0.05)
     # A second, brighter model: both panels draw on its scale.
     page.evaluate("document.querySelector('#add-model').click()")
@@ -120,19 +120,19 @@ def test_drag_orbits_and_models_share_a_scale(page, renderer):
 
 def test_camera_and_order_in_the_address_and_presets(page):
     page.evaluate("brdfLab.setViews(['lobe3d', 'sh'])")
-    page.evaluate("brdfLab.setSettings({lobeYaw: 0.25, lobeZoom: 1.5, shOrder: 4})")
+    page.evaluate("brdfLab.setSettings({lobe_yaw: 0.25, lobe_zoom: 1.5, sh_order: 4})")
     address = page.evaluate("location.hash")
-    assert "lyaw=0.25" in address and "lzoom=1.5" in address and "sh=4" in address
+    assert "lobe_yaw=0.25" in address and "lobe_zoom=1.5" in address and "sh_order=4" in address
     hash_ = page.evaluate(
         "brdfLab.presetHash({model: [{model: 'ggx'}], views: ['lobe3d', 'sh'],"
         " settings: {lobe_yaw: 1.2, lobe_pitch: 0.8, lobe_zoom: 2.5, sh_order: 3}})"
     )
     assert hash_["skipped"] == []
     page.evaluate("h => { location.hash = h; }", hash_["hash"])
-    page.wait_for_function("brdfLab.state.shOrder === 3 && brdfLab.state.lobeZoom === 2.5")
-    state = page.evaluate("[brdfLab.state.lobeYaw, brdfLab.state.lobePitch, brdfLab.state.views]")
+    page.wait_for_function("brdfLab.state.settings.sh_order === 3 && brdfLab.state.settings.lobe_zoom === 2.5")
+    state = page.evaluate("[brdfLab.state.settings.lobe_yaw, brdfLab.state.settings.lobe_pitch, brdfLab.state.views]")
     assert state == [1.2, 0.8, ["lobe3d", "sh"]]
-    page.evaluate("brdfLab.setSettings({lobeYaw: -0.6, lobePitch: 0.35, lobeZoom: 1, shOrder: 8})")
+    page.evaluate("brdfLab.setSettings({lobe_yaw: -0.6, lobe_pitch: 0.35, lobe_zoom: 1, sh_order: 8})")
     assert page.errors == []
 
 
@@ -140,7 +140,7 @@ def test_mirror_spike_and_coarse_frame(page, renderer):
     """A delta model's spike (the scale's floor) is the desktop's; while the hand moves the
     lobe draws at half resolution, and full size again once it stops."""
     page.evaluate("brdfLab.setModel(0, 'mirror')")
-    page.evaluate("brdfLab.setSettings({polarLog: false, cosWeighted: false})")
+    page.evaluate("brdfLab.setSettings({polar_log: false, polar_cos: false})")
     page.evaluate("brdfLab.setViews(['lobe3d'])")
     _, out = read(page)
     peak, spike = renderer.lobe_peak(load_model("mirror"), {}, *LIGHT, False, LOBE_GRID)

@@ -27,7 +27,7 @@ def test_every_module_of_the_page_is_preloaded():
     page = (STATIC / "index.html").read_text(encoding="utf-8")
     preloaded = set(re.findall(r'<link rel="modulepreload" href="([^"]+)">', page))
     wanted = static_imports("lab.js")
-    assert {"views.js", "sh.js", "header.js"} <= wanted  # the parser finds the graph
+    assert {"panel.js", "state.js", "header.js"} <= wanted  # the parser finds the graph
     assert preloaded == wanted, (
         f'index.html: add <link rel="modulepreload"> for {sorted(wanted - preloaded)}, '
         f"remove those for {sorted(preloaded - wanted)}"
@@ -35,4 +35,4 @@ def test_every_module_of_the_page_is_preloaded():
     assert "editor.js" not in preloaded  # the editor (400 kB) loads when it is opened
     # The manifest, as load() fetches it (same URL, CORS mode, no credentials across sites).
     assert '<link rel="preload" href="manifest.json" as="fetch" crossorigin="anonymous">' in page
-    assert 'fetchText("manifest.json")' in (STATIC / "lab.js").read_text(encoding="utf-8")
+    assert 'fetchText("manifest.json")' in (STATIC / "files.js").read_text(encoding="utf-8")

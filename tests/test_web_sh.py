@@ -34,7 +34,7 @@ def test_sh_matches_desktop(page, renderer, name, values, output_dir):
     from lab.app.views.sh import sh_data
 
     page.evaluate("([n, v]) => brdfLab.setModel(0, n, v)", [name, values])
-    page.evaluate("brdfLab.state.shOrder = 6")
+    page.evaluate("brdfLab.state.settings.sh_order = 6")
     page.evaluate("brdfLab.setViews(['sh'])")
     assert page.evaluate("brdfLab.errors(0)") == ""
     web = page.evaluate("brdfLab.readView(0, 'sh')")

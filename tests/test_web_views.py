@@ -52,7 +52,7 @@ def assert_close(web: np.ndarray, desktop: np.ndarray, what: str) -> None:
 )
 def test_slice_matches_desktop(page, renderer, name, values):
     page.evaluate("([n, v]) => brdfLab.setModel(0, n, v)", [name, values])
-    page.evaluate("brdfLab.setSettings({phiD: 60})")
+    page.evaluate("brdfLab.setSettings({phi_d: 60})")
     page.evaluate("brdfLab.setViews(['slice'])")
     assert page.evaluate("brdfLab.errors(0)") == ""
     web = image(page, "slice")[..., :3]
@@ -138,7 +138,7 @@ def test_polar_out_of_plane_matches_probe(page, renderer):
     page.evaluate("brdfLab.setViews([])")
     page.evaluate("brdfLab.setModel(0, 'ward', {alpha_x: 0.4, alpha_y: 0.1})")
     for phi_o in (0, 35, 90):
-        page.evaluate(f"brdfLab.setSettings({{phiO: {phi_o}}})")
+        page.evaluate(f"brdfLab.setSettings({{phi_o: {phi_o}}})")
         lobe = np.array(page.evaluate("brdfLab.readLobe(0)")).reshape(181, 4)[:, :3]
         theta_o = np.arange(-90, 91)
         azimuth = np.where(theta_o >= 0, 20 + 180, 20) + phi_o
@@ -146,7 +146,7 @@ def test_polar_out_of_plane_matches_probe(page, renderer):
         L = np.repeat(direction(40, 20)[None], 181, axis=0)
         desktop = renderer.probe(load_model("ward"), {"alpha_x": 0.4, "alpha_y": 0.1}, L, V)
         assert_close(lobe, desktop, f"polar at phi_o {phi_o}")
-    page.evaluate("brdfLab.setSettings({phiO: 0})")
+    page.evaluate("brdfLab.setSettings({phi_o: 0})")
 
 
 def test_models_share_one_polar_scale_with_a_log_option(page):
@@ -162,9 +162,9 @@ def test_models_share_one_polar_scale_with_a_log_option(page):
     assert page.locator("#overlay").is_visible()
     spike = page.evaluate("brdfLab.spike(0)")["length"]
     assert spike == pytest.approx(0.9 / peak[0], rel=1e-4)  # the mirror shrinks beside Phong
-    page.evaluate("brdfLab.setSettings({polarLog: true})")
+    page.evaluate("brdfLab.setSettings({polar_log: true})")
     expected = math.log10(0.9 / (peak[0] * 10.0**-PLOT_DECADES)) / PLOT_DECADES
     assert page.evaluate("brdfLab.spike(0)")["length"] == pytest.approx(expected, rel=1e-4)
-    assert "log=1" in page.evaluate("location.hash")
-    page.evaluate("brdfLab.setSettings({polarLog: false})")
+    assert "polar_log=1" in page.evaluate("location.hash")
+    page.evaluate("brdfLab.setSettings({polar_log: false})")
     page.evaluate("() => brdfLab.state.panels[1].root.querySelector('button.close').click()")

@@ -29,6 +29,8 @@ class Setting:
     label: str = ""
     step: float = 1.0  # a slider's step
     choices: tuple[str, ...] = ()  # for an int setting picked from a menu
+    unit: str = ""  # what its value is shown with ("°")
+    doc: str = ""  # what it means, for a control's tooltip (the web page's)
 
     def check(self, name: str, value: object, where: str = "") -> Value:
         """`value` as this setting's type, clamped to its range; ModelError if it is not one."""
@@ -98,12 +100,13 @@ class ViewSpec:
 
 # The light is not a view's: every view reads it.
 LIGHT = {
-    "theta_i": Setting(30.0, 0.0, 90.0, "θi", 0.5),
-    "phi_i": Setting(0.0, 0.0, 360.0, "φi", 0.5),
+    "theta_i": Setting(30.0, 0.0, 90.0, "θi", 0.5, unit="°"),
+    "phi_i": Setting(0.0, 0.0, 360.0, "φi", 0.5, unit="°"),
 }
 
 _PACKAGES = ["lab.views"]
 _cache: list[ViewSpec] | None = None
+_files: dict[str, str] = {}  # view name -> the file of the module that declares it
 
 
 def add_package(package: str) -> None:
@@ -122,11 +125,13 @@ def all_views() -> list[ViewSpec]:
         for package in _PACKAGES:
             root = importlib.import_module(package)
             for info in pkgutil.iter_modules(root.__path__):
-                spec = getattr(importlib.import_module(f"{package}.{info.name}"), "VIEW", None)
+                module = importlib.import_module(f"{package}.{info.name}")
+                spec = getattr(module, "VIEW", None)
                 if isinstance(spec, ViewSpec):
                     if spec.name in found:
                         raise ValueError(f"two views are named {spec.name!r}")
                     found[spec.name] = spec
+                    _files[spec.name] = module.__file__
         _cache = sorted(found.values(), key=lambda v: (v.order, v.name))
         owners: dict[str, str] = {}
         for spec in _cache:  # a setting belongs to one view; others may read it
@@ -142,6 +147,13 @@ def view(name: str) -> ViewSpec:
         if spec.name == name:
             return spec
     raise KeyError(name)
+
+
+def module_file(name: str) -> str:
+    """The file of the Python module that declares view `name` (its page module may sit
+    beside it: lab/web/site.py)."""
+    all_views()
+    return _files[name]
 
 
 def plot_views() -> list[str]:
@@ -161,14 +173,34 @@ def defaults() -> dict[str, Value]:
     return {name: s.default for name, s in all_settings().items()}
 
 
+def setting_kind(setting: Setting) -> str:
+    """ "bool", "int" or "float": what a front end parses the setting as."""
+    return type(setting.default).__name__
+
+
 def manifest() -> list[dict]:
-    """The views for the web page's manifest."""
+    """The views for the web page's manifest: each view's name, titles, order and settings
+    (default, range, step, label, choices and kind), which the page builds its view list,
+    controls, defaults and address keys from. A view the page can draw also names its page
+    module (lab/web/site.py adds "page")."""
     return [
         {
             "name": v.name,
             "title": v.title,
+            "short_title": v.short_title or v.title,
+            "order": v.order,
             "settings": {
-                name: {"default": s.default, "min": s.minimum, "max": s.maximum, "label": s.label}
+                name: {
+                    "default": s.default,
+                    "min": s.minimum,
+                    "max": s.maximum,
+                    "step": s.step,
+                    "label": s.label,
+                    "choices": list(s.choices),
+                    "kind": setting_kind(s),
+                    "unit": s.unit,
+                    "doc": s.doc,
+                }
                 for name, s in v.settings.items()
             },
         }

@@ -12,8 +12,17 @@ VIEW = ViewSpec(
     name="object",
     title="Lit object / spatially varying",
     settings={
-        "shape": Setting(0, 0, len(SHAPES) - 1, "shape", choices=SHAPES),
-        "mode": Setting(1, 0, len(MODES) - 1, "mode", choices=MODES),
+        "shape": Setting(
+            0, 0, len(SHAPES) - 1, "shape", choices=SHAPES, doc="the lit object's shape"
+        ),
+        "mode": Setting(
+            1,
+            0,
+            len(MODES) - 1,
+            "mode",
+            choices=MODES,
+            doc="the lecture's steps to spatially varying BRDFs",
+        ),
         "lights": Setting(3, 1, 4, "lights"),
         "ambient": Setting(0.03, 0.0, 0.3, "ambient", 0.01),
         "yaw": Setting(0.6, label="yaw"),

@@ -20,6 +20,18 @@ VIEW = ViewSpec(
     settings={  # the 3D lobe reads these two as well
         "polar_log": Setting(False, label="log scale"),
         "polar_cos": Setting(False, label="f_r · cos θo"),
+        # The plot's plane turned about the normal, out of the plane of incidence (the web
+        # page's; the desktop plots the plane of incidence).
+        "phi_o": Setting(
+            0.0,
+            0.0,
+            180.0,
+            "φo",
+            1.0,
+            unit="°",
+            doc="φo: turn the polar plot's plane about the normal, out of the plane of incidence "
+            "(0° = the plane of incidence)",
+        ),
     },
     dock=("right", 1),
     size=(0.33, 0.42),

@@ -108,7 +108,15 @@ VIEW = ViewSpec(
     name="slice",
     title="Image slice (θh, θd)",
     settings={
-        "phi_d": Setting(90.0, 0.0, 180.0, "φd", 1.0),
+        "phi_d": Setting(
+            90.0,
+            0.0,
+            180.0,
+            "φd",
+            1.0,
+            unit="°",
+            doc="φd: the difference azimuth of the (θh, θd) slice",
+        ),
         "slice_scale": Setting(0, 0, len(SCALES) - 1, "colours", choices=SCALES),
     },
     dock=("bottom", 0),

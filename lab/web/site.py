@@ -49,6 +49,32 @@ def library_headers() -> dict[str, dict]:
     return out
 
 
+def view_pages() -> dict[str, Path]:
+    """Each view's page module, where it has one: NAME.js beside the view's Python module
+    (a plug-in's, a test's), else lab/web/static/views/NAME.js. The page loads them from
+    views/NAME.js; a view without one (the sphere and the polar plot, which every panel
+    draws itself) is left out."""
+    found = {}
+    for spec in views.all_views():
+        for path in (
+            Path(views.module_file(spec.name)).with_name(f"{spec.name}.js"),
+            STATIC_DIR / "views" / f"{spec.name}.js",
+        ):
+            if path.is_file():
+                found[spec.name] = path
+                break
+    return found
+
+
+def views_manifest() -> list[dict]:
+    """The registry's views (lab/views), each with the address of its page module."""
+    pages = view_pages()
+    return [
+        {**view, "page": f"views/{view['name']}.js"} if view["name"] in pages else view
+        for view in views.manifest()
+    ]
+
+
 def manifest() -> dict:
     """What the page loads: the model names and their parsed headers, every shader file
     (paths under shaders/, and their texts: one request instead of forty at load), the
@@ -60,7 +86,7 @@ def manifest() -> dict:
         "files": files,
         "sources": {f: (SHADER_DIR / f).read_text(encoding="utf-8") for f in files},
         "constants": constants.as_dict(),
-        "views": views.manifest(),
+        "views": views_manifest(),
         "presets": presets(),
         "exercises": exercise_list(),
         # The measured model's file: a table opened in the page is drawn by it.
@@ -104,6 +130,12 @@ def export(outdir: str | Path) -> Path:
     for item in STATIC_DIR.iterdir():
         if item.is_file():
             shutil.copy2(item, outdir / item.name)
+    pages = outdir / "views"
+    if pages.exists():
+        shutil.rmtree(pages)
+    pages.mkdir()
+    for name, path in view_pages().items():
+        shutil.copy2(path, pages / f"{name}.js")
     target = outdir / "shaders"
     if target.exists():
         shutil.rmtree(target)
@@ -140,6 +172,10 @@ class LabHandler(http.server.SimpleHTTPRequestHandler):
 
     def translate_path(self, path: str) -> str:
         clean = path.split("?", 1)[0].split("#", 1)[0]
+        if clean.startswith("/views/") and clean.endswith(".js"):
+            page = view_pages().get(clean[len("/views/") : -len(".js")])
+            if page is not None:
+                return str(page)
         if clean == "/shaders" or clean.startswith("/shaders/"):
             base = super().translate_path(clean[len("/shaders") :] or "/")
             relative = Path(base).relative_to(Path(self.directory).resolve())

@@ -5,19 +5,20 @@
 // library's version.
 import { createEditor } from "./editor.js";
 import { ModelError, parseModel } from "./header.js";
+import { el } from "./dom.js";
 
 const DEBOUNCE_MS = 250;
 
 export class ShaderEditor {
-  /** `env`: { lab, el, tryCompile(panel, model), install(panel, model), keepText(panel,
-   * text) } from lab.js. */
-  constructor(root, env) {
+  /** The editor in `root`; `actions` (editing.js): tryCompile(panel, model) throws where a
+   * text does not compile, install(panel, model) shows it, keepText(panel, text) keeps the
+   * student's text in this browser. */
+  constructor(root, actions) {
     this.root = root;
-    this.env = env;
+    this.actions = actions;
     this.panel = null;
     this.timer = 0;
     this.checks = 0; // finished checks (tests wait for them)
-    const { el } = env;
     this.title = el("strong", { class: "editor-title" });
     this.status = el("div", { class: "editor-status", role: "status" });
     const open = el("input", { type: "file", accept: ".glsl", hidden: "" });
@@ -64,7 +65,7 @@ export class ShaderEditor {
 
   schedule() {
     // Kept at once (not after the check): a reload right after typing loses nothing.
-    if (this.panel) this.env.keepText(this.panel, this.editor.text);
+    if (this.panel) this.actions.keepText(this.panel, this.editor.text);
     clearTimeout(this.timer);
     this.timer = setTimeout(() => this.check(), DEBOUNCE_MS);
   }
@@ -75,13 +76,13 @@ export class ShaderEditor {
     const panel = this.panel;
     if (!panel) return [];
     const text = this.editor.text;
-    this.env.keepText(panel, text);
+    this.actions.keepText(panel, text);
     const file = this.path.split("/").pop();
     let errors = [];
     try {
       const model = this.build ? this.build(text) : parseModel(text, this.path, panel.name);
-      this.env.tryCompile(panel, model);
-      this.env.install(panel, model);
+      this.actions.tryCompile(panel, model);
+      this.actions.install(panel, model);
     } catch (err) {
       if (err instanceof ModelError) errors = [{ line: err.line || 1, message: err.detail }];
       else if (err.errors) {
@@ -107,7 +108,7 @@ export class ShaderEditor {
 
   save() {
     const blob = new Blob([this.editor.text], { type: "text/plain" });
-    const a = this.env.el("a", { href: URL.createObjectURL(blob), download: this.path.split("/").pop() });
+    const a = el("a", { href: URL.createObjectURL(blob), download: this.path.split("/").pop() });
     document.body.append(a);
     a.click();
     a.remove();

@@ -5,7 +5,10 @@
 // (compare_values, compare_image) with the same tolerances and messages.
 import { floatTexture } from "./assemble.js";
 import { ModelError, defaults, formatG, parseModel } from "./header.js";
-import { topFirst } from "./views.js";
+import { topFirst } from "./viewkit.js";
+import { el } from "./dom.js";
+import { direction } from "./geometry.js";
+import { addPanel, removePanel } from "./panels.js";
 import { explain, prepare, rows } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
@@ -206,21 +209,21 @@ function toneImage(raw, size) {
 }
 
 /** The grader's message for a loop its guard stopped (lab/grading/checks.py). */
-function loopFailure(check, panel, env, where) {
+function loopFailure(check, panel, where) {
   const line = panel.lastLoop.line;
   const file = panel.model.path.split("/").pop();
   return { passed: false, message: `${file}:${line}: the loop at line ${line} did not end within ` +
-    `${Number(env.C.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where}; check its exit condition ` +
+    `${Number(panel.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where}; check its exit condition ` +
     "(on a GPU such a loop freezes the screen)" };
 }
 
 /** stopped_where for a sphere pixel (x, y from the bottom, as read back). */
-function sphereWhere(check, stop, env) {
+function sphereWhere(check, stop) {
   const px = ((stop.x + 0.5) / check.size) * 2 - 1;
   const py = ((stop.y + 0.5) / check.size) * 2 - 1;
   const n = [px, py, Math.sqrt(Math.max(1 - px * px - py * py, 0))];
   const light = check.lights[0] || [45, 0];
-  const l = env.direction(light[0], light[1]);
+  const l = direction(light[0], light[1]);
   const deg = (c) => ((Math.acos(Math.min(Math.max(c, -1), 1)) * 180) / Math.PI).toFixed(1);
   const thetaI = deg(n[0] * l[0] + n[1] * l[1] + n[2] * l[2]);
   return `pixel (${stop.x}, ${check.size - 1 - stop.y}) of the sphere (θi = ${thetaI}°, θo = ${deg(n[2])}°)`;
@@ -229,13 +232,13 @@ function sphereWhere(check, stop, env) {
 /** The panel's model at direction pairs (flat degrees: θi, φi, θo, φo per row) as RGBA
  * floats. The directions are made here in double precision (the probe view): built-in sin
  * and cos are coarse on some GPUs (SwiftShader), the grader's llvmpipe's are not. */
-function probeValues(panel, env, degrees, n) {
+function probeValues(panel, degrees, n) {
   const gl = panel.gl;
   const L = new Float32Array(4 * n);
   const V = new Float32Array(4 * n);
   for (let i = 0; i < n; i++) {
-    L.set(env.direction(degrees[4 * i], degrees[4 * i + 1]), 4 * i);
-    V.set(env.direction(degrees[4 * i + 2], degrees[4 * i + 3]), 4 * i);
+    L.set(direction(degrees[4 * i], degrees[4 * i + 1]), 4 * i);
+    V.set(direction(degrees[4 * i + 2], degrees[4 * i + 3]), 4 * i);
   }
   const textures = [floatTexture(gl, n, 1, L), floatTexture(gl, n, 1, V)];
   try {
@@ -247,8 +250,9 @@ function probeValues(panel, env, degrees, n) {
 
 /** The grader's diagnosis of a failed check ('Likely: ...' or ''), from the stored
  * references as `brdf-lab grade` reads them; the student's model renders what it needs. */
-function diagnose(panel, exercise, check, result, env) {
-  if (check.kind === "sphere") return explain(exercise, check, null, result.student.data, null, null, env.C.LUMA);
+function diagnose(panel, exercise, check, result) {
+  const C = panel.lab.constants;
+  if (check.kind === "sphere") return explain(exercise, check, null, result.student.data, null, null, C.LUMA);
   const degrees = fromBase64(check.angles, Float32Array);
   const angles = rows4(degrees, check.count);
   const evaluate = (params, at) => {
@@ -256,13 +260,13 @@ function diagnose(panel, exercise, check, result, env) {
     panel.values = checkValues(panel.model, params);
     try {
       const flat = at ? Float32Array.from(at.flat()) : degrees;
-      return rows(probeValues(panel, env, flat, check.count), check.count, 4);
+      return rows(probeValues(panel, flat, check.count), check.count, 4);
     } finally {
       panel.values = saved;
     }
   };
   const expected = rows(check.expectedValues, check.count);
-  return explain(exercise, check, expected, rows(result.got, check.count, 4), angles, evaluate, env.C.LUMA);
+  return explain(exercise, check, expected, rows(result.got, check.count, 4), angles, evaluate, C.LUMA);
 }
 
 const rows4 = (flat, n) => Array.from({ length: n }, (_, i) => Array.from(flat.subarray(4 * i, 4 * i + 4)));
@@ -273,12 +277,12 @@ function checkValues(model, params) {
 }
 
 /** Runs one check on the panel (its model is the submission); {passed, message, ...}. */
-export function runCheck(panel, check, env) {
+export function runCheck(panel, check) {
   const saved = panel.values;
   panel.values = checkValues(panel.model, check.params);
   try {
     if (check.kind === "sphere") {
-      const { C, direction } = env;
+      const C = panel.lab.constants;
       const dirs = [];
       const rgb = [];
       for (let i = 0; i < C.MAX_LIGHTS; i++) {
@@ -291,18 +295,18 @@ export function runCheck(panel, check, env) {
         u_light_rgb: rgb, u_ambient: check.ambient, u_multiply_cos: true },
       { preamble: `const int LIGHT_COUNT = ${check.lights.length};` }), size, size);
       check.referencePixels ??= fromBase64(check.reference, Uint8Array);
-      if (panel.lastLoop) return loopFailure(check, panel, env, sphereWhere(check, panel.lastLoop, env));
+      if (panel.lastLoop) return loopFailure(check, panel, sphereWhere(check, panel.lastLoop));
       const student = toneImage(raw, size);
       const result = compareImage(check, check.referencePixels, raw, student.data);
       return { ...result, student, compared: true };
     }
     const degrees = fromBase64(check.angles, Float32Array);
-    const got = probeValues(panel, env, degrees, check.count);
+    const got = probeValues(panel, degrees, check.count);
     if (panel.lastLoop) {
       const k = Math.min(panel.lastLoop.x, check.count - 1);
       const row = degrees.slice(4 * k, 4 * k + 4);
       const where = `(θi, φi, θo, φo) = (${[...row].map((d) => `${d.toFixed(1)}°`).join(", ")})`;
-      return loopFailure(check, panel, env, where);
+      return loopFailure(check, panel, where);
     }
     check.expectedValues ??= fromBase64(check.expected, Float32Array);
     return { ...compareValues(check, check.expectedValues, got), compared: true, got };
@@ -313,10 +317,12 @@ export function runCheck(panel, check, env) {
 
 // -- the page's exercise section -----------------------------------------------------------
 export class ExerciseMode {
-  /** `env`: { lab, el, C, direction, addPanel, openEditor } from lab.js. */
-  constructor(root, env) {
+  /** Practice mode in `root` for the page's `lab` (state.js); `openEditor(panel, stub,
+   * options)` opens the editor on the exercise's panel (editing.js). */
+  constructor(root, lab, openEditor) {
     this.root = root;
-    this.env = env;
+    this.lab = lab;
+    this.openEditor = openEditor;
     this.data = null;
     this.exercise = null;
     this.panel = null;
@@ -335,7 +341,7 @@ export class ExerciseMode {
 
   /** Opens exercise `name`: its stub in the editor, its model in a panel, the checks run. */
   async open(name) {
-    const { lab } = this.env;
+    const lab = this.lab;
     const exercise = (await this.load()).find((e) => e.name === name);
     if (!exercise) throw new Error(`no exercise ${name}`);
     await prepare(exercise); // the stored mistakes' values, inflated once
@@ -346,10 +352,11 @@ export class ExerciseMode {
     // One exercise at a time: the last one's panel goes (else, exercise after exercise, the
     // page runs out of panels and the next one cannot open).
     if (this.panel && this.panel.name !== exercise.name && lab.panels.includes(this.panel)) {
-      this.env.removePanel(this.panel);
+      removePanel(lab, this.panel);
     }
-    this.panel = lab.panels.find((p) => p.name === exercise.name) || this.env.addPanel(exercise.name);
-    await this.env.openEditor(this.panel, exercise.stub, {
+    this.panel = lab.panels.find((p) => p.name === exercise.name) || addPanel(lab, exercise.name);
+    lab.requestRender();
+    await this.openEditor(this.panel, exercise.stub, {
       path,
       text: exercise.stub,
       build: (text) => buildSubmission(exercise, text, path, lab.models),
@@ -370,11 +377,11 @@ export class ExerciseMode {
       // The sampling checks run on request (seconds, not every keystroke).
       if (SAMPLED_KINDS.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
       try {
-        const result = runCheck(this.panel, check, this.env);
+        const result = runCheck(this.panel, check);
         if (result.compared && !result.passed) {
           // As the grader: the likely mistake ends the message (a diagnosis never breaks a check).
           try {
-            result.diagnosis = diagnose(this.panel, exercise, check, result, this.env);
+            result.diagnosis = diagnose(this.panel, exercise, check, result);
           } catch (err) {
             if (err.errors === undefined && !(err instanceof ModelError)) console.warn(err);
             result.diagnosis = "";
@@ -395,13 +402,13 @@ export class ExerciseMode {
   /** Runs the sampling checks (chi-square, pdf integral, IBL render) of this version. */
   async runSampling() {
     const waiting = this.results.filter((r) => r.pending);
-    for (const result of waiting) await prepareSampled(result.check, this.env);
+    for (const result of waiting) await prepareSampled(result.check);
     for (const result of waiting) {
       const panel = this.panel;
       const saved = panel.values;
       panel.values = checkValues(panel.model, result.check.params);
       try {
-        Object.assign(result, await runSampled(panel, result.check, this.exercise, this.env), { pending: false });
+        Object.assign(result, await runSampled(panel, result.check, this.exercise), { pending: false });
         if (panel.lastLoop) {
           Object.assign(result, { passed: false, message: `${this.exercise.student_file}:${panel.lastLoop.line}: ` +
             "a loop did not end: the lab stopped it, so the samples are wrong; check its exit condition" });
@@ -419,7 +426,6 @@ export class ExerciseMode {
   }
 
   show() {
-    const { el } = this.env;
     const exercise = this.exercise;
     const points = this.results.reduce((s, r) => s + (r.passed ? r.check.points : 0), 0);
     const rows = this.results.map((r) => el("li", { class: r.pending ? "pending" : r.passed ? "pass" : "fail",

@@ -66,6 +66,7 @@ export function pyRepr(text) {
 
 /** Python's str.splitlines() (no trailing empty line). */
 export function splitLines(text) {
+  // eslint-disable-next-line no-control-regex -- Python's str.splitlines() breaks at these too
   const lines = text.split(/\r\n|[\n\r\v\f\x1c-\x1e\x85\u2028\u2029]/);
   if (lines.length && lines[lines.length - 1] === "") lines.pop();
   return lines;

@@ -23,7 +23,10 @@ const demo = {
 };
 window.iblDemo = demo;
 const $ = (id) => document.getElementById(id);
-let gl, files = {}, manifest, envs = {}, started = performance.now();
+const files = {};
+const envs = {};
+const started = performance.now();
+let gl, manifest;
 
 async function text(path) {
   const response = await fetch(path);

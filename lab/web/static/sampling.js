@@ -458,9 +458,9 @@ function pdfIntegral(panel, check, exercise) {
 }
 
 /** Loads what a check needs from the server before it runs: nothing for these kinds. */
-export async function prepareSampled(check, env) {}
+export async function prepareSampled(check) {}
 
 /** Runs a sampling check on the panel (its values already the check's). */
-export async function runSampled(panel, check, exercise, env) {
+export async function runSampled(panel, check, exercise) {
   return check.kind === "chi_square" ? chiSquare(panel, check, exercise) : pdfIntegral(panel, check, exercise);
 }

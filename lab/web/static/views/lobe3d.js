@@ -2,8 +2,10 @@
 // vertex stage, from the desktop's templates (shaders/views/lobe_mesh*.glsl, as
 // lab/views/lobe3d.py draws them); every panel on one shared scale; drag (or touch) to
 // orbit, wheel to zoom. The marks (horizon, N, L, R, a delta's spike) are drawn on top.
-import { ModelError, formatG } from "./header.js";
-import { VERSION_LINES, assembleFragment, finishProgram, floatTexture, startProgram, translateLog } from "./assemble.js";
+import { ModelError, formatG } from "../header.js";
+import { el, viewBox } from "../dom.js";
+import { direction } from "../geometry.js";
+import { VERSION_LINES, assembleFragment, finishProgram, floatTexture, startProgram, translateLog } from "../assemble.js";
 
 export const LOBE_GRID = [61, 121]; // vertices in theta_o and phi_o (lab/views/lobe3d.py)
 export const LOBE_FAST_GRID = [25, 49]; // while a slider moves
@@ -84,16 +86,16 @@ function otherPeak(panel) {
 }
 
 export class LobeView {
-  constructor(panel, env) {
+  constructor(panel) {
     this.panel = panel;
-    this.env = env;
-    const { lab } = env;
-    this.canvas = env.el("canvas", { class: "lobe3d", width: lab.size, height: Math.round(lab.size * 0.75) });
-    this.root = env.viewBox(this.canvas, "3D lobe", () => `${panel.name}_lobe3d.png`);
-    this.wire = env.el("input", { type: "checkbox" });
-    this.wire.addEventListener("change", () => env.scheduleRender());
-    this.note = env.el("div", { class: "view-note" });
-    this.root.append(env.el("label", { class: "group", title: "grid lines only: the surface shows through" }, this.wire, " wire"),
+    this.lab = panel.lab;
+    const lab = this.lab;
+    this.canvas = el("canvas", { class: "lobe3d", width: lab.size, height: Math.round(lab.size * 0.75) });
+    this.root = viewBox(this.canvas, "3D lobe", () => `${panel.name}_lobe3d.png`);
+    this.wire = el("input", { type: "checkbox" });
+    this.wire.addEventListener("change", () => this.lab.requestRender());
+    this.note = el("div", { class: "view-note" });
+    this.root.append(el("label", { class: "group", title: "grid lines only: the surface shows through" }, this.wire, " wire"),
       this.note);
     // One finger or the mouse orbits; two fingers pinch to zoom.
     const pointers = new Map();
@@ -102,8 +104,8 @@ export class LobeView {
       return Math.hypot(a[0] - b[0], a[1] - b[1]);
     };
     const zoom = (factor) => {
-      lab.lobeZoom = Math.min(Math.max(lab.lobeZoom * factor, 0.2), 8);
-      env.scheduleRender();
+      lab.set("lobe_zoom", lab.settings.lobe_zoom * factor);
+      this.lab.requestRender();
     };
     this.canvas.addEventListener("pointerdown", (e) => {
       this.canvas.setPointerCapture(e.pointerId);
@@ -119,10 +121,10 @@ export class LobeView {
         return;
       }
       const rect = this.canvas.getBoundingClientRect();
-      lab.lobeYaw += ((e.clientX - last[0]) / rect.width) * Math.PI;
-      lab.lobePitch = Math.min(Math.max(lab.lobePitch + ((e.clientY - last[1]) / rect.height) * Math.PI, -1.5), 1.5);
+      lab.set("lobe_yaw", lab.settings.lobe_yaw + ((e.clientX - last[0]) / rect.width) * Math.PI);
+      lab.set("lobe_pitch", lab.settings.lobe_pitch + ((e.clientY - last[1]) / rect.height) * Math.PI);
       pointers.set(e.pointerId, [e.clientX, e.clientY]);
-      env.scheduleRender();
+      this.lab.requestRender();
     });
     for (const end of ["pointerup", "pointercancel"]) this.canvas.addEventListener(end, (e) => pointers.delete(e.pointerId));
     this.canvas.addEventListener("wheel", (e) => {
@@ -141,16 +143,16 @@ export class LobeView {
   }
 
   peakKey() {
-    const { lab } = this.env;
+    const lab = this.lab;
     const light = lab.lights[0];
-    return JSON.stringify([this.panel.values, light.theta, light.phi, lab.cosWeighted]);
+    return JSON.stringify([this.panel.values, light.theta, light.phi, lab.settings.polar_cos]);
   }
 
   /** Queues the probe of the full grid for peak() (null while the cached peak holds). */
   queuePeak() {
     const key = this.peakKey();
     if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return null;
-    const light = this.env.lab.lights[0];
+    const light = this.lab.lights[0];
     const [rows, cols] = LOBE_GRID;
     const n = rows * cols;
     // The grid's directions change with the light only (not while a parameter moves).
@@ -178,7 +180,8 @@ export class LobeView {
   /** [largest value, delta spike] from the probe queued by queuePeak(), cached. */
   readPeak(queued) {
     if (!queued) return this.peakCache.value;
-    const { lab, C } = this.env;
+    const lab = this.lab;
+    const C = lab.constants;
     const light = lab.lights[0];
     const f = this.panel.collect(queued.pass);
     const { angles, V } = this.directions;
@@ -190,7 +193,7 @@ export class LobeView {
     let peak = 0;
     for (let k = 0; k < n; k++) {
       let value = C.LUMA[0] * f[4 * k] + C.LUMA[1] * f[4 * k + 1] + C.LUMA[2] * f[4 * k + 2];
-      if (lab.cosWeighted) value *= Math.max(V[4 * k + 2], 0);
+      if (lab.settings.polar_cos) value *= Math.max(V[4 * k + 2], 0);
       values[k] = value;
       if (angles[2 * k] <= grazing && Number.isFinite(value)) peak = Math.max(peak, value);
     }
@@ -205,17 +208,18 @@ export class LobeView {
   }
 
   uniforms(grid) {
-    const { lab } = this.env;
+    const lab = this.lab;
     const light = lab.lights[0];
     return { u_grid: [grid[0], grid[1]], u_light_angles: [(light.theta * Math.PI) / 180, (light.phi * Math.PI) / 180],
-      u_cos: lab.cosWeighted };
+      u_cos: lab.settings.polar_cos };
   }
 
   /** The model's lobe program: the assembled model + lobe_mesh.glsl as the vertex stage
    * (with `start`, only queued: see Panel.warmPrograms). */
   program({ start = false } = {}) {
     const { panel } = this;
-    const { lab, C } = this.env;
+    const lab = this.lab;
+    const C = lab.constants;
     const enums = Object.fromEntries(panel.model.params.filter((p) => p.kind === "enum").map((p) => [p.name, panel.values[p.name]]));
     const key = `lobe_mesh vertex|${JSON.stringify(enums)}`;
     if (!panel.programs.has(key)) {
@@ -295,7 +299,7 @@ export class LobeView {
   /** The scale (every panel's peak: small probes), then the mesh's draw, queued: a second
    * round, read back by process(). */
   collect() {
-    const { lab } = this.env;
+    const lab = this.lab;
     // One scale for every panel: the largest value (or spike) of all of them.
     const peaks = lab.panels.map((p) => (p === this.panel ? this.readPeak(this.queued) : otherPeak(p)));
     const shared = Math.max(...peaks.flat(), 0);
@@ -308,7 +312,7 @@ export class LobeView {
   /** Queues the lobe's mesh at `scale` (radius 1) into the float target; with `pixel`, on
    * one pixel only. */
   drawMesh(scale, { pixel = false } = {}) {
-    const { lab } = this.env;
+    const lab = this.lab;
     const gl = this.panel.gl;
     const grid = lab.fast ? LOBE_FAST_GRID : LOBE_GRID;
     // While the hand moves, half the resolution (a quarter of the pixels to draw and read).
@@ -335,16 +339,16 @@ export class LobeView {
     const set = {
       u_grid: () => gl.uniform2i(u.u_grid, grid[0], grid[1]),
       u_light_angles: () => gl.uniform2fv(u.u_light_angles, this.uniforms(grid).u_light_angles),
-      u_yaw: () => gl.uniform1f(u.u_yaw, lab.lobeYaw),
-      u_pitch: () => gl.uniform1f(u.u_pitch, lab.lobePitch),
-      u_zoom: () => gl.uniform1f(u.u_zoom, lab.lobeZoom),
+      u_yaw: () => gl.uniform1f(u.u_yaw, lab.settings.lobe_yaw),
+      u_pitch: () => gl.uniform1f(u.u_pitch, lab.settings.lobe_pitch),
+      u_zoom: () => gl.uniform1f(u.u_zoom, lab.settings.lobe_zoom),
       u_perspective: () => gl.uniform1i(u.u_perspective, 1),
       // Clip y flipped (as LobeCamera.uniforms): the first row read back is the top row.
       u_aspect: () => gl.uniform2f(u.u_aspect, short / width, -short / height),
       u_peak: () => gl.uniform1f(u.u_peak, scale),
-      u_log: () => gl.uniform1i(u.u_log, lab.polarLog ? 1 : 0),
-      u_decades: () => gl.uniform1f(u.u_decades, this.env.C.PLOT_DECADES),
-      u_cos: () => gl.uniform1i(u.u_cos, lab.cosWeighted ? 1 : 0),
+      u_log: () => gl.uniform1i(u.u_log, lab.settings.polar_log ? 1 : 0),
+      u_decades: () => gl.uniform1f(u.u_decades, this.lab.constants.PLOT_DECADES),
+      u_cos: () => gl.uniform1i(u.u_cos, lab.settings.polar_cos ? 1 : 0),
       u_color: () => gl.uniform3fv(u.u_color, hexRgb(this.panel.color)),
       u_wire: () => gl.uniform1i(u.u_wire, this.wire.checked ? 1 : 0),
     };
@@ -383,7 +387,7 @@ export class LobeView {
 
   /** The picture (display values, not radiance: no exposure or sRGB) and the marks. */
   draw() {
-    const { lab } = this.env;
+    const lab = this.lab;
     const { width, height } = this.canvas;
     const image = new ImageData(...this.size);
     // A clamped array clamps to 0..255 and rounds (NaN gives 0) by itself.
@@ -398,7 +402,7 @@ export class LobeView {
       ctx.imageSmoothingEnabled = true; // a smooth draft, not blocks
       ctx.drawImage(scratch, 0, 0, width, height);
     }
-    const camera = { yaw: lab.lobeYaw, pitch: lab.lobePitch, zoom: lab.lobeZoom };
+    const camera = { yaw: lab.settings.lobe_yaw, pitch: lab.settings.lobe_pitch, zoom: lab.settings.lobe_zoom };
     const at = (p) => project(camera, p, width, height);
     const line = (a, b, rgb, widthPx, dash = []) => {
       ctx.strokeStyle = css(rgb);
@@ -418,7 +422,7 @@ export class LobeView {
     line([-1, 0, 0], [1, 0, 0], [0.45, 0.45, 0.5], 1);
     line([0, -1, 0], [0, 1, 0], [0.45, 0.45, 0.5], 1);
     const { theta, phi } = lab.lights[0];
-    const ends = { N: this.env.direction(0, 0), L: this.env.direction(theta, phi), R: this.env.direction(theta, phi + 180) };
+    const ends = { N: direction(0, 0), L: direction(theta, phi), R: direction(theta, phi + 180) };
     const font = Math.round((12 * width) / (this.canvas.clientWidth || width));
     ctx.font = `${font}px system-ui, sans-serif`;
     ctx.textAlign = "center";
@@ -429,16 +433,16 @@ export class LobeView {
       ctx.fillText(name, ...at(end.map((c) => 1.25 * c)));
     }
     if (this.spike > 0) {
-      const r = lab.polarLog
-        ? Math.min(Math.max(Math.log10(this.spike / (this.scale * 10 ** -this.env.C.PLOT_DECADES)), 0) / this.env.C.PLOT_DECADES, 1.5)
+      const r = lab.settings.polar_log
+        ? Math.min(Math.max(Math.log10(this.spike / (this.scale * 10 ** -this.lab.constants.PLOT_DECADES)), 0) / this.lab.constants.PLOT_DECADES, 1.5)
         : Math.min(this.spike / this.scale, 1.5);
       line([0, 0, 0], ends.R.map((c) => r * c), hexRgb(this.panel.color), 4);
     }
     ctx.textAlign = "left";
     ctx.textBaseline = "alphabetic";
     ctx.fillStyle = "#bbb";
-    const what = lab.cosWeighted ? "fᵣ cos θₒ" : "fᵣ";
-    const scale = lab.polarLog ? `, log over ${this.env.C.PLOT_DECADES} decades` : "";
+    const what = lab.settings.polar_cos ? "fᵣ cos θₒ" : "fᵣ";
+    const scale = lab.settings.polar_log ? `, log over ${this.lab.constants.PLOT_DECADES} decades` : "";
     ctx.fillText(`${what}${scale}`, 4, font + 2);
     ctx.fillText(`radius 1: ${formatG(Number(this.scale.toPrecision(3)))} sr⁻¹`, 4, 2 * font + 4);
     this.note.textContent = "drag to orbit; wheel or pinch to zoom" + (this.spike > 0 ? `; the line along R: the δ spike, ρ = ${formatG(Number(this.spike.toPrecision(3)))}` : "");
@@ -452,3 +456,5 @@ export class LobeView {
     return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid };
   }
 }
+
+export const VIEW = { name: "lobe3d", queue: 30, create: (panel) => new LobeView(panel) };

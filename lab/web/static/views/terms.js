@@ -1,27 +1,29 @@
 // The microfacet terms on their own, as lab/views/terms.py draws them: D against θh (log),
 // G against θo in light 1's plane of incidence, F against θd, from the model's own
 // MICROFACET_TERMS through shaders/views/terms.glsl.
-import { floatTexture } from "./assemble.js";
-import { formatG } from "./header.js";
-import { clearedPlot } from "./plotscale.js";
+import { floatTexture } from "../assemble.js";
+import { formatG } from "../header.js";
+import { clearedPlot } from "../plotscale.js";
+import { el, viewBox } from "../dom.js";
+import { direction } from "../geometry.js";
 
 const TERMS_FUNCTION = /\bvoid\s+MICROFACET_TERMS\s*\(/;
 const ANGLES = Array.from({ length: 91 }, (_, k) => k); // θh for D, θd for F (degrees)
 export const hasTerms = (model) => TERMS_FUNCTION.test(model.code);
 
 export class TermsView {
-  constructor(panel, env) {
+  constructor(panel) {
     this.panel = panel;
-    this.env = env;
-    this.canvas = env.el("canvas", { class: "terms", width: 384, height: 200 });
-    this.root = env.viewBox(this.canvas, "microfacet terms", () => `${panel.name}_terms.png`);
-    this.note = env.el("div", { class: "view-note" });
+    this.lab = panel.lab;
+    this.canvas = el("canvas", { class: "terms", width: 384, height: 200 });
+    this.root = viewBox(this.canvas, "microfacet terms", () => `${panel.name}_terms.png`);
+    this.note = el("div", { class: "view-note" });
     this.root.append(this.note);
   }
 
   /** The (L, V) pairs of the three families (lab/views/terms.py's term_pairs). */
   pairs() {
-    const { lab, direction } = this.env;
+    const lab = this.lab;
     const { theta, phi } = lab.lights[0];
     const L = [];
     const V = [];
@@ -63,7 +65,8 @@ export class TermsView {
   }
 
   draw() {
-    const { lab, C } = this.env;
+    const lab = this.lab;
+    const C = lab.constants;
     const canvas = this.canvas;
     const { ctx, px } = clearedPlot(canvas);
     if (!this.terms) {
@@ -156,3 +159,5 @@ export class TermsView {
     return this.terms ?? { theta: [], D: [], theta_o: [], G: [], F: [] };
   }
 }
+
+export const VIEW = { name: "terms", queue: 10, create: (panel) => new TermsView(panel) };

@@ -4,11 +4,12 @@
 // and the same procedural environments (lab/ibl/environments.py, served as float data).
 // Passes of samples add up in a float target (additive blending); the view shows the mean
 // and the sample count, and starts again when anything it depends on changes.
-import { floatTexture } from "./assemble.js";
-import { toImage, topFirst } from "./views.js";
-import { STRATEGIES, STRATEGY_TITLES, environmentTextures, loadEnvironment, samplerText, withSampler } from "./iblsource.js";
+import { floatTexture } from "../assemble.js";
+import { toImage, topFirst } from "../viewkit.js";
+import { el, viewBox } from "../dom.js";
+import { STRATEGIES, STRATEGY_TITLES, environmentTextures, loadEnvironment, samplerText, withSampler } from "../iblsource.js";
 
-export { STRATEGIES, STRATEGY_TITLES, samplerText, samplingTables } from "./iblsource.js";
+export { STRATEGIES, STRATEGY_TITLES, samplerText, samplingTables } from "../iblsource.js";
 
 const ENV_UNIT = 8; // texture units 8..11 hold the environment, as on the desktop
 export const IBL_SIZE = 256; // render size (the desktop's), at most the page's sphere size
@@ -95,13 +96,13 @@ export function markGain(data, size, luma) {
 
 /** The IBL view of one panel. */
 export class IblView {
-  constructor(panel, env) {
+  constructor(panel) {
     this.panel = panel;
-    this.env = env;
-    const { el, lab } = env;
+    this.lab = panel.lab;
+    const lab = this.lab;
     this.size = Math.min(lab.size, IBL_SIZE);
     this.canvas = el("canvas", { class: "ibl", width: this.size, height: this.size });
-    this.root = env.viewBox(this.canvas, "ibl", () => `${panel.name}_ibl_${IBL.environment}.png`);
+    this.root = viewBox(this.canvas, "ibl", () => `${panel.name}_ibl_${IBL.environment}.png`);
     this.samples = 0;
     this.passes = 0;
     this.key = "";
@@ -112,7 +113,7 @@ export class IblView {
       box.value = IBL[field];
       box.addEventListener("change", () => {
         IBL[field] = box.value;
-        env.scheduleRender();
+        this.lab.requestRender();
       });
       return box;
     };
@@ -124,7 +125,7 @@ export class IblView {
       title: "turn the environment about the vertical axis (degrees)" });
     this.rotation.addEventListener("input", () => {
       IBL.rotation = Number(this.rotation.value);
-      env.scheduleRender();
+      this.lab.requestRender();
     });
     this.root.append(el("div", { class: "ibl-controls" }, this.envBox, this.strategyBox,
       el("label", { title: this.rotation.title }, "turn ", this.rotation)), this.status);
@@ -133,7 +134,7 @@ export class IblView {
 
   /** A setting changed somewhere on the page: start again if it touches this render. */
   render() {
-    const { lab } = this.env;
+    const lab = this.lab;
     this.envBox.value = IBL.environment;
     this.strategyBox.value = IBL.strategy;
     this.rotation.value = IBL.rotation;
@@ -182,7 +183,8 @@ export class IblView {
   /** This context's textures of the environment (loaded once per page). */
   async environment(name) {
     if (!this.textures.has(name)) {
-      const { C, lab } = this.env;
+      const lab = this.lab;
+    const C = lab.constants;
       const map = await loadEnvironment(name, lab.environments, C.LUMA);
       const gl = this.panel.gl;
       if (!gl) return null;
@@ -220,7 +222,7 @@ export class IblView {
 
   /** One pass of `spp` samples per pixel, added to the target. */
   pass(spp) {
-    const { lab } = this.env;
+    const lab = this.lab;
     const gl = this.panel.gl;
     const textures = this.textures.get(IBL.environment);
     if (!textures || spp <= 0) return;
@@ -284,7 +286,7 @@ export class IblView {
   draw() {
     this.showStatus();
     if (!this.samples) return;
-    const { lab } = this.env;
+    const lab = this.lab;
     const data = this.sums();
     // The mean; the environment shows behind the sphere (alpha 0 there in the sums).
     for (let i = 0; i < data.length; i += 4) {
@@ -293,15 +295,15 @@ export class IblView {
     }
     // The furnace test: under radiance 1 no ring may reflect more than 1 (beyond the noise).
     const furnace = IBL.environment === "furnace" && this.samples >= GAIN_SAMPLES;
-    this.peak = furnace ? ringPeak(data, this.size, this.env.C.LUMA) : null;
-    if (this.peak > 1.01) markGain(data, this.size, this.env.C.LUMA); // colour and text
+    this.peak = furnace ? ringPeak(data, this.size, this.lab.constants.LUMA) : null;
+    if (this.peak > 1.01) markGain(data, this.size, this.lab.constants.LUMA); // colour and text
     this.showStatus();
-    this.canvas.getContext("2d").putImageData(toImage(data, this.size, this.size, lab.exposure), 0, 0);
+    this.canvas.getContext("2d").putImageData(toImage(data, this.size, this.size, lab.settings.exposure), 0, 0);
   }
 
   showStatus() {
     const model = this.panel.model;
-    const note = model ? fallback(model, IBL.strategy, this.env.lab.files) : null;
+    const note = model ? fallback(model, IBL.strategy, this.lab.files) : null;
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
     const gain = this.peak > 1.01 ? ` · ENERGY GAIN (red): a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
     const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}` +
@@ -320,4 +322,11 @@ export class IblView {
   }
 }
 
-export const IBL_TITLE = "IBL (Monte Carlo)";
+
+export const VIEW = {
+  name: "ibl",
+  queue: 70,
+  create: (panel) => new IblView(panel),
+  // Its settings in the address: ibl=ENVIRONMENT,STRATEGY,ROTATION.
+  address: { key: "ibl", read: (value, lab) => readIblHash(value, lab.environments?.names || [], lab.notes), write: () => iblHash() },
+};
