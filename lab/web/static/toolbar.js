@@ -7,6 +7,9 @@ import { $, el } from "./dom.js";
 import { showAmbient } from "./lights.js";
 import { round } from "./state.js";
 
+// The registry settings with a control here (the views' own and the polar plot's φo).
+const controlled = [];
+
 /** The id of a setting's control ("phi_d" -> "phi-d"; its value shows in "phi-d-text"). */
 export const controlId = (name) => name.replace(/_/g, "-");
 
@@ -44,15 +47,17 @@ export function buildViewTools(lab) {
       showToolbar(lab);
       lab.requestRender();
     });
-    return el("label", { title: view.title }, box, ` ${view.title}`);
+    return el("label", { title: view.title }, box, ` ${view.short_title}`);
   }));
   const tools = lab.pageViews.flatMap((name) => (lab.modules[name].toolbar || []).filter((s) => lab.specs[s]));
   $("#view-tools").append(...tools.map((name) => settingControl(lab, name)));
+  controlled.push(...tools);
   // The sphere's and the polar plot's settings: controls in index.html, ranges from the registry.
   for (const name of ["exposure", "phi_o"]) {
     const input = $(`#${controlId(name)}`);
     const spec = lab.specs[name];
     if (!input || !spec) continue;
+    if (name !== "exposure") controlled.push(name);
     Object.assign(input, { min: spec.min, max: spec.max, step: spec.step });
     if (spec.doc) input.closest("label").title = spec.doc;
     input.addEventListener("input", () => {
@@ -76,9 +81,9 @@ export function showToolbar(lab) {
   $("#exposure-text").textContent = `×${formatG(round(Math.pow(2, lab.settings.exposure)))}`;
   $("#cos-weighted").checked = lab.settings.polar_cos;
   $("#polar-log").checked = lab.settings.polar_log;
-  for (const [name, spec] of Object.entries(lab.specs)) {
-    const input = name === "exposure" ? null : document.getElementById(controlId(name));
-    if (!input) continue;
+  for (const name of controlled) {
+    const spec = lab.specs[name];
+    const input = document.getElementById(controlId(name));
     if (input.type === "checkbox") input.checked = lab.settings[name];
     else input.value = lab.settings[name];
     const text = document.getElementById(`${controlId(name)}-text`);
@@ -86,7 +91,8 @@ export function showToolbar(lab) {
   }
   // A view's own controls show while the view does.
   for (const label of document.querySelectorAll("#view-tools label[data-view]")) {
-    label.hidden = Boolean(lab.modules[label.dataset.view]) && !lab.views.includes(label.dataset.view);
+    const hidden = Boolean(lab.modules[label.dataset.view]) && !lab.views.includes(label.dataset.view);
+    label.style.display = hidden ? "none" : "";
   }
   document.querySelectorAll("#view-choice input").forEach((box) => (box.checked = lab.views.includes(box.value)));
   for (const name of lab.pageViews) document.body.classList.toggle(`with-${name}`, lab.views.includes(name));
