@@ -129,10 +129,11 @@ def test_camera_and_order_in_the_address_and_presets(page):
     )
     assert hash_["skipped"] == []
     page.evaluate("h => { location.hash = h; }", hash_["hash"])
-    page.wait_for_function("brdfLab.state.settings.sh_order === 3 && brdfLab.state.settings.lobe_zoom === 2.5")
-    state = page.evaluate("[brdfLab.state.settings.lobe_yaw, brdfLab.state.settings.lobe_pitch, brdfLab.state.views]")
-    assert state == [1.2, 0.8, ["lobe3d", "sh"]]
-    page.evaluate("brdfLab.setSettings({lobe_yaw: -0.6, lobe_pitch: 0.35, lobe_zoom: 1, sh_order: 8})")
+    page.wait_for_function("(s => s.sh_order === 3 && s.lobe_zoom === 2.5)(brdfLab.state.settings)")
+    state = page.evaluate("(s => [s.lobe_yaw, s.lobe_pitch])(brdfLab.state.settings)")
+    assert state + [page.evaluate("brdfLab.state.views")] == [1.2, 0.8, ["lobe3d", "sh"]]
+    page.evaluate("brdfLab.setSettings({lobe_yaw: -0.6, lobe_pitch: 0.35, lobe_zoom: 1})")
+    page.evaluate("brdfLab.setSettings({sh_order: 8})")
     assert page.errors == []
 
 
