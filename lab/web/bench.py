@@ -23,10 +23,10 @@ VIEWPORT = {"width": 1400, "height": 900}  # views out of it draw when scrolled 
 # renderer process ready); a page Playwright has just opened is still starting its renderer
 # for a few hundred milliseconds, which the first load would otherwise be timed with.
 TAB_IDLE_MS = 500
-# Every view box that is not wholly inside the window.
+# Every view box wholly out of the window (the page draws those when idle or scrolled to).
 OFFSCREEN_JS = """[...document.querySelectorAll('#panels .view')].filter(v => {
   const r = v.getBoundingClientRect();
-  return r.top < 0 || r.bottom > innerHeight || r.left < 0 || r.right > innerWidth;
+  return r.bottom <= 0 || r.top >= innerHeight || r.right <= 0 || r.left >= innerWidth;
 }).map(v => v.dataset.view)"""
 
 

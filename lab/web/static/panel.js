@@ -121,8 +121,8 @@ export class Panel {
     return PALETTE[Math.max(this.lab.panels.indexOf(this), 0) % PALETTE.length];
   }
 
-  /** Makes the panel show the page's chosen views (lab.views), in their order: each made
-   * by its page module's create(panel). */
+  /** Makes the panel show the page's chosen views (lab.views): each made by its page
+   * module's create(panel). */
   syncViews() {
     for (const name of Object.keys(this.extra)) {
       if (!this.lab.views.includes(name)) delete this.extra[name];
@@ -132,7 +132,11 @@ export class Panel {
         this.extra[name] = this.lab.modules[name].create(this);
       }
     }
-    this.viewsBox.replaceChildren(...this.lab.views.filter((n) => this.extra[n]).map((n) => this.extra[n].root));
+    // Laid out cheapest first (a page module's queue): the views nearest the top of the
+    // window, the ones a first screen shows, are those that draw fastest.
+    const queue = (name) => this.lab.modules[name].queue ?? 100;
+    const shown = this.lab.views.filter((n) => this.extra[n]).sort((a, b) => queue(a) - queue(b));
+    this.viewsBox.replaceChildren(...shown.map((n) => this.extra[n].root));
     this.displaySize(parseFloat(this.canvas.style.width) || this.lab.size);
     // A new view knows at once whether it is in sight (the observer reports a frame later).
     for (const view of Object.values(this.extra)) {
