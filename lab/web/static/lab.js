@@ -95,6 +95,9 @@ async function main(lab) {
   const [, keptList] = await Promise.all([load(lab), embedded() ? [] : keptFiles()]);
   await Promise.all([loadViews(lab), restoreFiles(lab, keptList)]);
   const panels = readHash(lab);
+  // First every panel's sphere and polar plot (what the page is for), on screen at once;
+  // then the views in sight, coarse, as while a slider moves; then their full quality.
+  lab.coreOnly = lab.views.length > 0;
   wire(lab);
   showToolbar(lab);
   if (!panels.length) panels.push({ name: defaultModel(lab), values: {} });
@@ -105,14 +108,12 @@ async function main(lab) {
   buildLights(lab);
   fitEmbed(lab);
   cancelFrame();
-  // First every panel's sphere and polar plot (what the page is for), on screen at once;
-  // then the views in sight, coarse, as while a slider moves; then their full quality.
-  lab.coreOnly = lab.views.length > 0;
   renderNow();
   lab.firstRenderMs = performance.now(); // since navigation start
   lab.coreOnly = false;
   if (lab.views.length) {
     await nextFrame();
+    lab.panels.forEach((panel) => panel.syncViews());
     lab.fast = true;
     renderNow();
     lab.viewsRenderMs = performance.now();

@@ -128,7 +128,9 @@ export class Panel {
       if (!this.lab.views.includes(name)) delete this.extra[name];
     }
     for (const name of this.lab.views) {
-      if (!this.extra[name] && this.gl) {
+      // Until the page's first picture, the views wait (lab.js): their canvases and
+      // programs cost nothing before the spheres and polar plots are on screen.
+      if (!this.extra[name] && this.gl && !this.lab.coreOnly) {
         this.extra[name] = this.lab.modules[name].create(this);
       }
     }

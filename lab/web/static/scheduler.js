@@ -22,11 +22,11 @@ export function startScheduler(state) {
   addEventListener("pointermove", (e) => e.buttons && e.target.tagName === "CANVAS" && moving(), true);
 }
 
-/** While the hand moves (slider input, drag) the costly views draw coarse; the full
- * version follows SETTLE_MS after the last move. */
+/** While the hand moves (slider input, drag) a large sphere draws at half resolution and
+ * the costly views coarse; the full version follows SETTLE_MS after the last move. */
 function moving() {
   clearTimeout(settle);
-  lab.fast = lab.views.length > 0;
+  lab.fast = true;
   handMoving = true;
   settle = setTimeout(() => {
     handMoving = false;
