@@ -30,6 +30,11 @@ OFFSCREEN_JS = """[...document.querySelectorAll('#panels .view')].filter(v => {
 }).map(v => v.dataset.view)"""
 
 
+RENDERER_JS = """(() => { const gl = brdfLab.panel(0).gl;
+  const ext = gl.getExtension('WEBGL_debug_renderer_info');
+  return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER); })()"""
+
+
 def all_views() -> str:
     """Every view the page draws besides the sphere and the polar plot (the registry's
     views with a page module), comma-separated."""
@@ -195,7 +200,9 @@ def run(
         url = stack.enter_context(serving(export(tmp).parent))
         other = stack.enter_context(serving(compare)) if compare is not None else None
         browser = stack.enter_context(chromium())
-        for _ in range(max(1, loads)):
+        floor_address = url + address.removesuffix(shown)
+
+        def load_views() -> None:
             page = _load(
                 browser,
                 url + address,
@@ -205,21 +212,29 @@ def run(
             )
             result.offscreen = tuple(page.evaluate(OFFSCREEN_JS))
             if not result.frame_ms:
-                result.renderer = page.evaluate(
-                    "(() => { const gl = brdfLab.panel(0).gl;"
-                    " const ext = gl.getExtension('WEBGL_debug_renderer_info');"
-                    " return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL)"
-                    " : gl.getParameter(gl.RENDERER); })()"
-                )
+                result.renderer = page.evaluate(RENDERER_JS)
                 result.frame_ms = _slider(page, param, steps)
             page.close()
             if other is not None:
                 _load(browser, other + address, their_first, their_full, []).close()
-            if views:
-                floor = _load(browser, url + address.removesuffix(shown), result.floor_ms, [], [])
-                if not result.floor_frame_ms:
-                    result.floor_frame_ms = _slider(floor, param, steps)
-                floor.close()
+
+        def load_floor() -> None:
+            floor = _load(browser, floor_address, result.floor_ms, [], [])
+            if not result.floor_frame_ms:
+                result.floor_frame_ms = _slider(floor, param, steps)
+            floor.close()
+
+        for k in range(max(1, loads)):
+            # In turn, the other way round every other time: neither page is always the one
+            # loaded after the other.
+            if not views:
+                load_views()
+            elif k % 2 == 0:
+                load_views()
+                load_floor()
+            else:
+                load_floor()
+                load_views()
     if compare is not None:
         result.compared = (str(compare), their_first, their_full)
     return result
@@ -241,4 +256,7 @@ def _load(browser, address: str, first: list[float], full: list[float], shown: l
     shown.append(page.evaluate("brdfLab.state.viewsRenderMs"))
     page.wait_for_function("brdfLab.state.fullRenderMs !== null")
     full.append(page.evaluate("brdfLab.state.fullRenderMs"))
+    # The views out of the window draw while the page is idle: done before the next page
+    # loads, so that no page is timed while another's programs still compile.
+    page.wait_for_function("brdfLab.state.idleDrawnMs !== null", timeout=60_000)
     return page

@@ -86,6 +86,7 @@ function drawWhenIdle(lab) {
         return drawWhenIdle(lab);
       }
     }
+    lab.idleDrawnMs ??= performance.now(); // every view drawn, in sight or not
   });
 }
 

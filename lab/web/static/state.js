@@ -48,6 +48,7 @@ export class LabState {
     this.firstRenderMs = null; // the sphere and polar plot of every panel drawn (ms since navigation)
     this.viewsRenderMs = null; // every view in sight drawn, the costly ones coarse
     this.fullRenderMs = null; // every view at full quality
+    this.idleDrawnMs = null; // the views out of sight drawn too (while the page was idle)
     this.renderListener = () => {};
   }
 
