@@ -73,17 +73,19 @@ function wire(lab) {
 /** Waits for the browser to show the last frame (and to be free for the next task). */
 const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve)));
 
-/** Draws the views out of sight one at a time while the browser is idle, so that they are
- * ready when scrolled to; any change in between starts them again (scheduler). */
-function drawWhenIdle(lab) {
+/** Draws the views out of sight one at a time while the browser is idle, each once, so
+ * that they are ready when scrolled to (a progressive one, the IBL view, goes on when it
+ * comes into sight). */
+function drawWhenIdle(lab, drawn = new Set()) {
   const idle = window.requestIdleCallback ?? ((f) => setTimeout(f, 50));
   idle(() => {
-    if (lab.fast) return drawWhenIdle(lab);
+    if (lab.fast) return drawWhenIdle(lab, drawn);
     for (const panel of lab.panels) {
-      const view = Object.values(panel.extra).find((v) => v.stale);
+      const view = Object.values(panel.extra).find((v) => v.stale && !drawn.has(v));
       if (view) {
+        drawn.add(view);
         panel.renderView(view);
-        return drawWhenIdle(lab);
+        return drawWhenIdle(lab, drawn);
       }
     }
     lab.idleDrawnMs ??= performance.now(); // every view drawn, in sight or not
