@@ -178,6 +178,7 @@ def javascript():
         "library": library_files(),
         "peak": [(THETA_O, lobe, GRAZING_DEG) for lobe in LOBES],
         "radius": [(f, top, log, PLOT_DECADES) for f, top, log in RADII],
+        "g": [(x, d) for x in G_NUMBERS for d in (2, 3, 6)],
     }
     python = {
         "values": [python_value(p, t) for p in PARAMS for t in TEXTS],
@@ -258,6 +259,39 @@ def test_manifest_headers_are_what_the_page_would_parse(javascript):
         assert "error" not in header, header
         assert json.loads(json.dumps(header)) == js["headers"][name], name
         assert header["params"] and header["title"], name
+
+
+# Numbers the page writes with Python's %g: the edges of the fixed and exponent forms,
+# rounding up to a new digit, negative zero.
+G_NUMBERS = [
+    0.0,
+    -0.0,
+    1.0,
+    -2.5,
+    0.1,
+    1e-4,
+    9.99995e-5,
+    1e-5,
+    123456.0,
+    999999.5,
+    1e6,
+    1234567.0,
+    0.30000000000000004,
+    2 / 3,
+    -1e-300,
+    6.02214076e23,
+    99.95,
+    0.00012345,
+]
+
+
+def test_number_formatting_is_pythons_g(javascript):
+    """header.js formatDigits (the page's one %g: formatG, the diagnosis' and sampling's
+    sentences) writes what Python's format(x, ".Ng") writes."""
+    _, _, js = javascript
+    cases = [(x, d) for x in G_NUMBERS for d in (2, 3, 6)]
+    for (x, digits), got in zip(cases, js["g"], strict=True):
+        assert got == format(x, f".{digits}g"), (x, digits)
 
 
 def test_plot_scale_matches_python(javascript):

@@ -4,7 +4,7 @@
 import { readFileSync } from "node:fs";
 
 import { direction, planeOfIncidence } from "./static/geometry.js";
-import { parseModel } from "./static/header.js";
+import { formatDigits, parseModel } from "./static/header.js";
 import { peakValue, polarRadius } from "./static/plotscale.js";
 import { parseRgb, parseValue, sliderToValue, valueToSlider } from "./static/values.js";
 
@@ -26,6 +26,7 @@ const out = {
   slider_position: cases.slider_position.map(([p, value]) => valueToSlider(p, value)),
   peak: cases.peak.map(([thetaO, values, grazing]) => peakValue(thetaO, values, grazing)),
   radius: cases.radius.map(([f, top, log, decades]) => polarRadius(f, top, log, decades)),
+  g: cases.g.map(([x, digits]) => formatDigits(x, digits)),
   // The library's headers as the page would parse them (the manifest carries the Python's).
   headers: Object.fromEntries(Object.entries(cases.library).map(([name, { path, code }]) => {
     const parsed = attempt(() => parseModel(code, path, name));

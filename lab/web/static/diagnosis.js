@@ -2,7 +2,7 @@
 // in the same order as lab/grading/explain.py with the stored references (never live), and
 // the same tests and sentences as lab/grading/diagnosis.py. exercises.json carries the
 // stored values of the known mistakes and mutants and of each declared term alone.
-import { formatG } from "./header.js";
+import { formatDigits as g, formatG } from "./header.js";
 
 const CONSTANTS = [
   [Math.PI, "π", "a factor 1/π is missing"],
@@ -15,21 +15,6 @@ const CONSTANTS = [
 const CHANNELS = ["red", "green", "blue"];
 const MATCH_SHARE = 0.98;
 const GRAZING = 65;
-
-/** Python's format(x, ".3g") / ".2g". */
-function g(x, digits) {
-  if (!Number.isFinite(x)) return String(x);
-  if (x === 0) return "0";
-  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
-  if (exponent < -4 || exponent >= digits) {
-    const [mant, exp] = x.toExponential(digits - 1).split("e");
-    const m = mant.includes(".") ? mant.replace(/0+$/, "").replace(/\.$/, "") : mant;
-    const e = Number(exp);
-    return `${m}e${e < 0 ? "-" : "+"}${String(Math.abs(e)).padStart(2, "0")}`;
-  }
-  const text = x.toFixed(Math.max(digits - 1 - exponent, 0));
-  return text.includes(".") ? text.replace(/0+$/, "").replace(/\.$/, "") : text;
-}
 
 // -- rows of (n, 3) values, as flat Float32/Float64 arrays with a stride -----------------
 /** Rows (n x 3 numbers) from a flat array of `stride` numbers per row. */

@@ -24,28 +24,12 @@ export class ModelError extends Error {
   }
 }
 
-/** Python's `format(x, "g")`: 6 significant digits, trailing zeros dropped. */
-export function formatG(x) {
-  if (Number.isNaN(x)) return "nan";
-  if (!Number.isFinite(x)) return x > 0 ? "inf" : "-inf";
-  if (x === 0) return Object.is(x, -0) ? "-0" : "0";
-  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(6)))));
-  if (exponent < -4 || exponent >= 6) {
-    let [mantissa, exp] = x.toExponential(5).split("e");
-    if (mantissa.includes(".")) mantissa = mantissa.replace(/0+$/, "").replace(/\.$/, "");
-    const sign = exp[0] === "-" ? "-" : "+";
-    const digits = exp.replace(/^[+-]/, "").padStart(2, "0");
-    return `${mantissa}e${sign}${digits}`;
-  }
-  let text = x.toFixed(Math.max(0, 5 - exponent));
-  if (text.includes(".")) text = text.replace(/0+$/, "").replace(/\.$/, "");
-  return text;
-}
-
-/** Python's format(x, f".{digits}g"). */
-export function formatDigits(x, digits) {
+/** Python's format(x, f".{digits}g"): `digits` significant digits, trailing zeros dropped,
+ * an exponent of two digits at least; the page's one %g (its parity with Python is
+ * tests/test_web_mirrors.py's). */
+export function formatDigits(x, digits = 6) {
   if (!Number.isFinite(x)) return Number.isNaN(x) ? "nan" : x > 0 ? "inf" : "-inf";
-  if (x === 0) return "0";
+  if (x === 0) return Object.is(x, -0) ? "-0" : "0";
   const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
   const strip = (t) => (t.includes(".") ? t.replace(/0+$/, "").replace(/\.$/, "") : t);
   if (exponent < -4 || exponent >= digits) {
@@ -54,6 +38,9 @@ export function formatDigits(x, digits) {
   }
   return strip(x.toFixed(Math.max(0, digits - 1 - exponent)));
 }
+
+/** Python's `format(x, "g")`: 6 significant digits. */
+export const formatG = (x) => formatDigits(x, 6);
 
 /** Python's repr() of a string (quotes chosen the way Python chooses them). */
 export function pyRepr(text) {
