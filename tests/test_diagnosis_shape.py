@@ -13,6 +13,7 @@ import pytest
 
 from lab.grading import diagnosis, mistakes
 from lab.grading.exercise import Check
+from lab.web.exercises import diagnosis_rules
 
 
 def probe_rows(n: int = 200, seed: int = 3) -> np.ndarray:
@@ -135,14 +136,16 @@ def test_the_pages_shape_says_what_the_graders_says(tmp_path):
         "angles": angles.tolist(),
         "expected": expected.tolist(),
         "cases": {k: v.tolist() for k, v in cases.items()},
+        "rules": diagnosis_rules(),  # the words and thresholds, as exercises.json sends them
     }
     (tmp_path / "data.json").write_text(json.dumps(data))
     module = (Path(__file__).resolve().parent.parent / "lab/web/static/diagnosis.js").as_uri()
     script = tmp_path / "shape.mjs"
     script.write_text(
-        f'import {{ shape }} from "{module}";\n'
+        f'import {{ shape, useRules }} from "{module}";\n'
         'import { readFileSync } from "node:fs";\n'
         f'const d = JSON.parse(readFileSync("{tmp_path / "data.json"}", "utf8"));\n'
+        "useRules(d.rules);\n"
         "const out = {};\n"
         "for (const [k, got] of Object.entries(d.cases)) "
         "out[k] = shape(d.check, d.angles, d.expected, got);\n"

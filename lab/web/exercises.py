@@ -129,16 +129,31 @@ def exercise_entry(exercise: Exercise) -> dict:
     }
 
 
+def diagnosis_rules() -> dict:
+    """lab/grading/diagnosis.py's words and thresholds, for the page's diagnosis.js (which
+    carries the tests, not the sentences)."""
+    from lab.grading import diagnosis
+
+    return {
+        "constants": [list(entry) for entry in diagnosis.CONSTANTS],
+        "channels": list(diagnosis.CHANNELS),
+        "match_share": diagnosis.MATCH_SHARE,
+        "grazing": diagnosis.GRAZING,
+    }
+
+
 def exercises_manifest() -> dict:
-    """Every shipped exercise; one that cannot be read is named with its error."""
+    """Every shipped exercise and the diagnosis' rules; one exercise that cannot be read is
+    named with its error."""
+    rules = diagnosis_rules()
     try:
         found = find_exercises(data_dir("exercises"))
     except ExerciseError as err:
-        return {"exercises": [], "errors": [str(err)]}
+        return {"exercises": [], "errors": [str(err)], "diagnosis": rules}
     out, errors = [], []
     for exercise in found:
         try:
             out.append(exercise_entry(exercise))
         except (OSError, KeyError, ExerciseError) as err:
             errors.append(f"{exercise.name}: {err}")
-    return {"exercises": out, "errors": errors}
+    return {"exercises": out, "errors": errors, "diagnosis": rules}

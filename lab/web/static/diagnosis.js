@@ -4,17 +4,20 @@
 // stored values of the known mistakes and mutants and of each declared term alone.
 import { formatDigits as g, formatG } from "./header.js";
 
-const CONSTANTS = [
-  [Math.PI, "π", "a factor 1/π is missing"],
-  [1 / Math.PI, "1/π", "there is a 1/π too many"],
-  [2, "2", "a constant factor is off (2)"],
-  [4, "4", "a constant factor is off (4, as in 4·N·L·N·V)"],
-  [0.5, "1/2", "a constant factor is off (1/2)"],
-  [0.25, "1/4", "a constant factor is off (1/4, as in 4·N·L·N·V)"],
-];
-const CHANNELS = ["red", "green", "blue"];
-const MATCH_SHARE = 0.98;
-const GRAZING = 65;
+// The rules' words and thresholds are lab/grading/diagnosis.py's, sent as data in
+// exercises.json ("diagnosis": named factors with their sentences, channel names, the share
+// of rows a pattern must hold on, the grazing angle): useRules() before any diagnosis.
+let RULES = null;
+
+/** Takes exercises.json's "diagnosis" (lab/web/exercises.py diagnosis_rules). */
+export function useRules(rules) {
+  RULES = rules;
+}
+
+const rules = () => {
+  if (!RULES) throw new Error("diagnosis.js: no rules yet (useRules with exercises.json's diagnosis)");
+  return RULES;
+};
 
 // -- rows of (n, 3) values, as flat Float32/Float64 arrays with a stride -----------------
 /** Rows (n x 3 numbers) from a flat array of `stride` numbers per row. */
@@ -36,13 +39,13 @@ export function within(check, got, want, slack = 2) {
 const mean = (bools) => bools.reduce((s, b) => s + (b ? 1 : 0), 0) / Math.max(bools.length, 1);
 
 export function same(check, got, want) {
-  return mean(within(check, got, want)) >= MATCH_SHARE;
+  return mean(within(check, got, want)) >= rules().match_share;
 }
 
 /** diagnosis.nearest: the candidate the student agrees with nearly everywhere. */
 export function nearest(check, got, candidates, wrong) {
   let best = null;
-  let bestShare = MATCH_SHARE;
+  let bestShare = rules().match_share;
   const anyWrong = wrong.some(Boolean);
   for (const [key, values] of Object.entries(candidates)) {
     if (values.length !== got.length) continue;
@@ -84,7 +87,7 @@ function spread(ratio) {
 }
 
 function factorName(value) {
-  for (const [constant, name, cause] of CONSTANTS) if (Math.abs(value / constant - 1) < 0.02) return [name, cause];
+  for (const [constant, name, cause] of rules().constants) if (Math.abs(value / constant - 1) < 0.02) return [name, cause];
   return null;
 }
 
@@ -188,16 +191,17 @@ function oneChannel(check, expected, got, wrong) {
   }
   const channels = [0, 1, 2].map((c) => got.some((row, i) =>
     Math.abs(row[c] - expected[i][c]) > check.atol + check.rtol * Math.abs(expected[i][c])));
-  if (channels.filter(Boolean).length === 1) return `only the ${CHANNELS[channels.indexOf(true)]} channel is wrong`;
+  if (channels.filter(Boolean).length === 1) return `only the ${rules().channels[channels.indexOf(true)]} channel is wrong`;
   return "";
 }
 
 function grazing(angles, wrong, zero) {
-  const steep = angles.map((a) => Math.max(a[0], a[2]) > GRAZING);
+  const limit = rules().grazing;
+  const steep = angles.map((a) => Math.max(a[0], a[2]) > limit);
   const elsewhere = steep.map((s, i) => !s && !zero[i]);
   const nElsewhere = elsewhere.filter(Boolean).length;
   if (nElsewhere >= 8 && !wrong.some((w, i) => w && elsewhere[i]) && wrong.some((w, i) => w && steep[i])) {
-    return `the values are right except near grazing (θ above ${GRAZING}°) — check ` +
+    return `the values are right except near grazing (θ above ${formatG(limit)}°) — check ` +
       "the terms that matter there: Fresnel, G and the N·L·N·V denominator";
   }
   return "";

@@ -10,7 +10,7 @@ import { topFirst } from "./viewkit.js";
 import { el } from "./dom.js";
 import { direction } from "./geometry.js";
 import { addPanel, removePanel } from "./panels.js";
-import { explain, prepare, rows } from "./diagnosis.js";
+import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 
@@ -261,6 +261,7 @@ export class ExerciseMode {
       const response = await fetch("exercises.json");
       if (!response.ok) throw new Error(`cannot load exercises.json (HTTP ${response.status})`);
       this.data = await response.json();
+      useRules(this.data.diagnosis);
     }
     return this.data.exercises;
   }
