@@ -38,8 +38,9 @@ def web_ibl(page, model: str, values: dict, environment: str, strategy: str, sam
     """The page's IBL mean after `samples` per pixel: (SIZE, SIZE, 4), row 0 at the top."""
     page.evaluate(
         """async ([model, values, environment, strategy]) => {
-            const { IBL } = await import('./views/ibl.js');
-            Object.assign(IBL, { environment, strategy, rotation: 0 });
+            const specs = brdfLab.state.specs;
+            brdfLab.setSettings({ ibl_env: specs.ibl_env.choices.indexOf(environment),
+              ibl_strategy: specs.ibl_strategy.choices.indexOf(strategy), ibl_rotation: 0 });
             brdfLab.setModel(0, model, values);
             brdfLab.panel(0).extra.ibl.restart();
         }""",
@@ -138,16 +139,24 @@ def test_view_shows_the_count_and_restarts_when_a_slider_moves(page, output_dir)
 
 
 def test_address_holds_the_ibl_settings(page):
-    """ibl=ENVIRONMENT,STRATEGY,ROTATION in the address sets the view; changes are written."""
-    page.evaluate("location.hash = 'model=ward&views=ibl&ibl=studio,brdf,90'")
+    """The IBL settings go in the address under their registry names (ibl_env, ...; a
+    choice by name or number); an older address's ibl=ENVIRONMENT,STRATEGY,ROTATION still
+    reads; changes are written."""
+    page.evaluate("location.hash = 'model=ward&views=ibl&ibl_env=studio&ibl_strategy=3'")
     page.wait_for_function("brdfLab.panel(0)?.name === 'ward'")
     assert page.evaluate("brdfLab.panel(0).extra.ibl.envBox.value") == "studio"
     assert page.evaluate("brdfLab.panel(0).extra.ibl.strategyBox.value") == "brdf"
+    page.evaluate("location.hash = 'model=ward&views=ibl&ibl=studio,brdf,90'")
+    page.wait_for_function("brdfLab.state.settings.ibl_rotation === 90")
+    assert page.evaluate("brdfLab.panel(0).extra.ibl.envBox.value") == "studio"
     page.evaluate(
         """() => { const box = brdfLab.panel(0).extra.ibl.envBox; box.value = 'grey_room';
           box.dispatchEvent(new Event('change')); }"""
     )
-    page.wait_for_function("location.hash.includes('ibl=grey_room,brdf,90')")
+    # ENVIRONMENTS and STRATEGIES of lab/views/ibl.py: grey_room is 3, brdf 3.
+    page.wait_for_function(
+        "['ibl_env=3', 'ibl_strategy=3', 'ibl_rotation=90'].every(k => location.hash.includes(k))"
+    )
     page.evaluate("location.hash = 'model=ward&views=ibl&ibl=moon'")
     page.wait_for_function("brdfLab.notes().some(n => n.startsWith('ibl=moon'))")
     assert page.evaluate("brdfLab.panel(0).extra.ibl.envBox.value") == "sky"

@@ -18,29 +18,28 @@ const PASS_MS = 30; // aim of one pass, so that the page stays responsive
 const RINGS = 24; // rings of equal view angle for the furnace's reflectance peak
 const GAIN_SAMPLES = 64; // the furnace names an energy gain from this many samples on
 
-// Shared by every panel: the environment, the strategy and the rotation (degrees).
-const IBL_DEFAULTS = { environment: "sky", strategy: "mis_power", rotation: 0 };
-export const IBL = { ...IBL_DEFAULTS };
-
-/** The address's `ibl=ENVIRONMENT,STRATEGY,ROTATION` (any may be left out); a bad value is
- * named in `notes` and keeps its default. Without the key, the defaults. */
-export function readIblHash(value, names, notes) {
-  Object.assign(IBL, IBL_DEFAULTS);
-  if (value === null) return;
-  const [environment, strategy, rotation] = value.split(",");
-  if (environment && names.includes(environment)) IBL.environment = environment;
-  else if (environment) notes.push(`ibl=${value}: the environment is one of ${names.join(", ")}`);
-  if (strategy && STRATEGIES.includes(strategy)) IBL.strategy = strategy;
-  else if (strategy) notes.push(`ibl=${value}: the strategy is one of ${STRATEGIES.join(", ")}`);
-  const turn = Number(rotation);
-  if (rotation && Number.isFinite(turn) && turn >= 0 && turn <= 360) IBL.rotation = turn;
-  else if (rotation) notes.push(`ibl=${value}: the rotation is a number of degrees from 0 to 360`);
+/** The IBL settings of `lab` (the registry's ibl_env, ibl_strategy and ibl_rotation, shared
+ * by every panel) as names: {environment, strategy, rotation}. */
+export function iblSettings(lab) {
+  const { settings, specs } = lab;
+  return { environment: specs.ibl_env.choices[settings.ibl_env], strategy: specs.ibl_strategy.choices[settings.ibl_strategy],
+    rotation: settings.ibl_rotation };
 }
 
-/** The address part of the IBL settings ("" when all are the defaults). */
-export function iblHash() {
-  const same = Object.keys(IBL_DEFAULTS).every((k) => IBL[k] === IBL_DEFAULTS[k]);
-  return same ? "" : `ibl=${IBL.environment},${IBL.strategy},${IBL.rotation}`;
+/** An older address's `ibl=ENVIRONMENT,STRATEGY,ROTATION` (any may be left out) into the
+ * settings; a bad value is named in the notes and keeps its default. */
+function readOldAddress(value, lab) {
+  if (value === null) return;
+  const [environment, strategy, rotation] = value.split(",");
+  const names = lab.specs.ibl_env.choices;
+  if (environment && names.includes(environment)) lab.set("ibl_env", names.indexOf(environment));
+  else if (environment) lab.notes.push(`ibl=${value}: the environment is one of ${names.join(", ")}`);
+  const strategies = lab.specs.ibl_strategy.choices;
+  if (strategy && strategies.includes(strategy)) lab.set("ibl_strategy", strategies.indexOf(strategy));
+  else if (strategy) lab.notes.push(`ibl=${value}: the strategy is one of ${strategies.join(", ")}`);
+  const turn = Number(rotation);
+  if (rotation && Number.isFinite(turn) && turn >= 0 && turn <= 360) lab.set("ibl_rotation", turn);
+  else if (rotation) lab.notes.push(`ibl=${value}: the rotation is a number of degrees from 0 to 360`);
 }
 
 /** What the view says when the strategy needs a sampler the model lacks (integrator.fallback). */
@@ -102,38 +101,44 @@ export class IblView {
     const lab = this.lab;
     this.size = Math.min(lab.size, IBL_SIZE);
     this.canvas = el("canvas", { class: "ibl", width: this.size, height: this.size });
-    this.root = viewBox(this.canvas, "ibl", () => `${panel.name}_ibl_${IBL.environment}.png`);
+    this.root = viewBox(this.canvas, "ibl", () => `${panel.name}_ibl_${this.ibl().environment}.png`);
     this.samples = 0;
     this.passes = 0;
     this.key = "";
     this.textures = new Map(); // environment name -> its four textures on this context
     this.status = el("div", { class: "view-note ibl-status", role: "status" });
-    const select = (options, field, title) => {
-      const box = el("select", { title }, ...Object.entries(options).map(([v, t]) => el("option", { value: v }, t)));
-      box.value = IBL[field];
+    // A menu of a setting's choices (their names as values), shown with `titles`.
+    const select = (name, titles, title) => {
+      const choices = lab.specs[name].choices;
+      const box = el("select", { title }, ...choices.map((c) => el("option", { value: c }, titles[c] ?? c.replace("_", " "))));
       box.addEventListener("change", () => {
-        IBL[field] = box.value;
-        this.lab.requestRender();
+        lab.set(name, choices.indexOf(box.value));
+        lab.requestRender();
       });
       return box;
     };
-    const names = lab.environments || {};
-    this.envBox = select(Object.fromEntries((names.names || []).map((n) => [n, n.replace("_", " ")])), "environment",
-      "the environment: procedural maps the lab makes itself (lab/ibl/environments.py)");
-    this.strategyBox = select(STRATEGY_TITLES, "strategy", "how each sample's direction is drawn");
-    this.rotation = el("input", { type: "range", min: 0, max: 360, step: 5, value: IBL.rotation,
+    this.envBox = select("ibl_env", {}, "the environment: procedural maps the lab makes itself (lab/ibl/environments.py)");
+    this.strategyBox = select("ibl_strategy", STRATEGY_TITLES, "how each sample's direction is drawn");
+    const turn = lab.specs.ibl_rotation;
+    this.rotation = el("input", { type: "range", min: turn.min, max: turn.max, step: turn.step,
       title: "turn the environment about the vertical axis (degrees)" });
     this.rotation.addEventListener("input", () => {
-      IBL.rotation = Number(this.rotation.value);
-      this.lab.requestRender();
+      lab.set("ibl_rotation", Number(this.rotation.value));
+      lab.requestRender();
     });
     this.root.append(el("div", { class: "ibl-controls" }, this.envBox, this.strategyBox,
       el("label", { title: this.rotation.title }, "turn ", this.rotation)), this.status);
     this.tick = this.tick.bind(this);
   }
 
+  /** The IBL settings by name (iblSettings). */
+  ibl() {
+    return iblSettings(this.lab);
+  }
+
   /** A setting changed somewhere on the page: start again if it touches this render. */
   render() {
+    const IBL = this.ibl();
     const lab = this.lab;
     this.envBox.value = IBL.environment;
     this.strategyBox.value = IBL.strategy;
@@ -150,6 +155,7 @@ export class IblView {
   }
 
   restart() {
+    const IBL = this.ibl();
     const gl = this.panel.gl;
     this.samples = 0;
     this.passes = 0;
@@ -222,6 +228,7 @@ export class IblView {
 
   /** One pass of `spp` samples per pixel, added to the target. */
   pass(spp) {
+    const IBL = this.ibl();
     const lab = this.lab;
     const gl = this.panel.gl;
     const textures = this.textures.get(IBL.environment);
@@ -284,6 +291,7 @@ export class IblView {
   }
 
   draw() {
+    const IBL = this.ibl();
     this.showStatus();
     if (!this.samples) return;
     const lab = this.lab;
@@ -302,6 +310,7 @@ export class IblView {
   }
 
   showStatus() {
+    const IBL = this.ibl();
     const model = this.panel.model;
     const note = model ? fallback(model, IBL.strategy, this.lab.files) : null;
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
@@ -327,6 +336,6 @@ export const VIEW = {
   name: "ibl",
   queue: 70,
   create: (panel) => new IblView(panel),
-  // Its settings in the address: ibl=ENVIRONMENT,STRATEGY,ROTATION.
-  address: { key: "ibl", read: (value, lab) => readIblHash(value, lab.environments?.names || [], lab.notes), write: () => iblHash() },
+  // Older addresses' ibl=ENVIRONMENT,STRATEGY,ROTATION (now ibl_env=, ibl_strategy=, ibl_rotation=).
+  address: { key: "ibl", read: readOldAddress, write: () => "" },
 };
