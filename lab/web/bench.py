@@ -178,8 +178,9 @@ def run(
     """Loads the page with `views` (default: every view) and the floor page in turn, each
     in a new tab left idle for TAB_IDLE_MS: the first picture, every view in the window
     drawn and every view at full quality (performance.now() since navigation start), then
-    the frame time while a slider moves on each. With `compare` (a site written by
-    `brdf-lab web-export`), its page loads after each of this build's."""
+    the frame times while a slider moves through `steps` positions, on every load. With
+    `compare` (a site written by `brdf-lab web-export`), its page loads after each of this
+    build's."""
     from lab.web.browser import chromium
     from lab.web.site import export, serving
 
@@ -211,17 +212,17 @@ def run(
                 result.views_ms,
             )
             result.offscreen = tuple(page.evaluate(OFFSCREEN_JS))
-            if not result.frame_ms:
-                result.renderer = page.evaluate(RENDERER_JS)
-                result.frame_ms = _slider(page, param, steps)
+            result.renderer = page.evaluate(RENDERER_JS)
+            # Slider frames on every load, pooled: the two pages' frames then share the
+            # machine's ups and downs as their loads do.
+            result.frame_ms += _slider(page, param, steps)
             page.close()
             if other is not None:
                 _load(browser, other + address, their_first, their_full, []).close()
 
         def load_floor() -> None:
             floor = _load(browser, floor_address, result.floor_ms, [], [])
-            if not result.floor_frame_ms:
-                result.floor_frame_ms = _slider(floor, param, steps)
+            result.floor_frame_ms += _slider(floor, param, steps)
             floor.close()
 
         for k in range(max(1, loads)):
