@@ -5,6 +5,7 @@ downward, and no page module that names a view (views come from the registry).""
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -29,6 +30,36 @@ def test_every_module_is_under_the_cap_and_says_what_it_owns():
         too_long = f"{path.name}: {len(lines)} lines, split it by concern"
         assert len(lines) < jslint.MAX_LINES, too_long
         assert lines[0].startswith("//"), f"{path.name}: open with a comment saying what it owns"
+
+
+# The modules that restate a Python rule (the page must work alone: on files a student
+# opens or edits, and in practice mode), each with the test that holds it to the Python.
+MIRRORS = {
+    "header.js": "test_web_mirrors.py",  # and tests/fixtures/headers via check_fixtures.mjs
+    "assemble.js": "test_web_fixtures.py",
+    "values.js": "test_web_mirrors.py",
+    "geometry.js": "test_web_mirrors.py",
+    "plotscale.js": "test_web_mirrors.py",
+    "sh.js": "test_web_sh_mirror.py",
+    "diagnosis.js": "test_diagnosis_shape.py",
+    "flip.js": "test_web_flip.py",
+    "explorer.js": "test_web_files.py",
+    "measured.js": "test_web_files.py",
+    "sampling.js": "test_web_exercise.py",
+    "submission.js": "test_web_exercise.py",
+}
+
+
+def test_each_mirror_of_python_says_why_and_has_its_parity_test():
+    tests = Path(__file__).resolve().parent
+    for name, parity in MIRRORS.items():
+        header = []
+        for line in (jslint.STATIC / name).read_text(encoding="utf-8").splitlines():
+            if not line.startswith("//"):
+                break
+            header.append(line)
+        assert "Why in JavaScript too:" in "\n".join(header), f"{name}: say why it is mirrored"
+        assert (tests / parity).is_file(), f"{name}: its parity test {parity} is gone"
 
 
 def test_no_import_cycles():

@@ -2,6 +2,8 @@
 // parameter uniforms (enums as constants), includes, the model, the host's IS_DELTA and
 // DELTA_REFLECTANCE stub, then the view template. Each line keeps the file and line it
 // came from, so compile errors name the model file and its own line numbers.
+// Why in JavaScript too: the page assembles the models a student opens or edits, which never
+// reach Python.
 
 import { ModelError, splitLines } from "./header.js";
 

@@ -2,6 +2,8 @@
 // in the same order as lab/grading/explain.py with the stored references (never live), and
 // the same tests and sentences as lab/grading/diagnosis.py. exercises.json carries the
 // stored values of the known mistakes and mutants and of each declared term alone.
+// Why in JavaScript too: practice mode explains the student's values in the browser; its words
+// come as data.
 import { formatDigits as g, formatG } from "./header.js";
 
 // The rules' words and thresholds are lab/grading/diagnosis.py's, sent as data in

@@ -4,6 +4,7 @@
 // written for desktop GLSL, which turns ints into floats where needed; GLSL ES does not, so
 // integer literals in float expressions are written as floats, and int divisions (1/4 is 0
 // in desktop GLSL too) stay ints converted as a whole (floatLiterals).
+// Why in JavaScript too: a .brdf file opened in the page never reaches Python.
 import { ModelError, splitLines } from "./header.js";
 import { Source, VERSION_LINES, addView, glslDefines, guardLoops, loopGuardPrelude, uniformDeclarations } from "./assemble.js";
 

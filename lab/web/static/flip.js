@@ -3,6 +3,7 @@
 // FLIP). Written from the papers: Andersson et al., "FLIP: A Difference Evaluator for
 // Alternating Images", HPG 2020, and "Visualizing Errors in Rendered High Dynamic Range
 // Images", Eurographics 2021 (observer: a 0.7 m wide 4K screen seen from 0.7 m).
+// Why in JavaScript too: practice mode compares the student's picture in the browser.
 
 const PPD = ((0.7 * 3840) / 0.7) * (Math.PI / 180); // pixels per degree of visual angle
 const QC = 0.7; // colour error exponent

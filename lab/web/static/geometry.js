@@ -1,6 +1,8 @@
 // Directions and the plane of incidence, as lab/geometry.py makes them (angles in degrees,
 // theta from the normal z, phi from x). Pure functions: tests/test_web_mirrors.py checks
 // them against the Python on a table of cases.
+// Why in JavaScript too: every view of the page makes its directions in the browser, at every
+// frame.
 
 /** Unit vector for angles in degrees, as lab.geometry.direction. */
 export function direction(thetaDeg, phiDeg) {

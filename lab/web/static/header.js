@@ -1,6 +1,8 @@
 // Model file headers, parsed by the rules of shaders/README.md.
 // This mirrors lab/models.py line for line (messages included); the fixture files in
 // tests/fixtures/headers/ are checked against both, so the two parsers cannot drift.
+// Why in JavaScript too: the page parses the files a student opens or edits, which never reach
+// Python (the library's come parsed in the manifest).
 
 export const PARAM_TYPES = ["float", "color", "bool", "enum"];
 const IDENTIFIER = /^[A-Za-z_][A-Za-z0-9_]*$/;

@@ -2,6 +2,7 @@
 // (same checks, same messages) and drawn by the desktop's own model file
 // (lab/measured/measured.glsl, from the manifest), whose lookup is 8 texelFetches: a float
 // 3D texture needs no filtering extension that way.
+// Why in JavaScript too: a table opened in the page never reaches Python.
 import { ModelError, parseModel } from "./header.js";
 import { parseBrdf } from "./explorer.js";
 

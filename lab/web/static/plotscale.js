@@ -1,6 +1,8 @@
 // The page's part of the one scaling rule of every plot of f_r (lab/plotscale.py): the
 // scale's top leaves out values beyond the grazing cut-off, and the log scale spans a fixed
 // number of decades below the top. tests/test_web_mirrors.py runs these against the Python.
+// Why in JavaScript too: the page scales its own plots of models Python never sees (opened or
+// edited files).
 
 /** The largest finite value of `values` (sampled at thetaO, degrees) with |thetaO| within
  * grazingDeg; 0 when there is none (plotscale.peak_value). */

@@ -7,6 +7,8 @@
 // the same adaptive quadrature over ibl_pdf.glsl. The IBL render check is the grader's
 // alone (its z-test and noise ratio take many passes of two estimators): the page lists it
 // among the checks only the grader runs.
+// Why in JavaScript too: practice mode checks the student's text in the browser, which never
+// reaches Python.
 import { floatTexture } from "./assemble.js";
 import { sentence } from "./diagnosis.js";
 import { formatDigits as gFormat } from "./header.js";

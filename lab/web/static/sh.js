@@ -1,8 +1,9 @@
 // Spherical harmonics for the page's SH view (views/sh.js), as lab/measured/sh.py computes
 // them: Gauss-Legendre quadrature, real harmonics up to order 16 and the projection of a
-// lobe as an odd function of z. Mirrored in JavaScript because the page draws the view
-// alone (a model the student opens or edits never reaches Python); check_sh.mjs and
-// tests/test_web_sh_mirror.py hold the two to the same numbers.
+// lobe as an odd function of z; check_sh.mjs and tests/test_web_sh_mirror.py hold the two
+// to the same numbers.
+// Why in JavaScript too: the page projects the lobes of models Python never sees (opened or
+// edited files).
 
 export const MAX_ORDER = 16;
 export const GRID = [48, 96]; // Gauss-Legendre nodes in cos θ × uniform φ (sh_view.GRID)

@@ -1,8 +1,9 @@
 // A student's submission as a model every view renders, as lab/grading/exercise.py's
 // build_model makes it: the required functions checked against the grader's signatures,
 // a sampler exercise's functions made the library model's sampler, a wrapper's text put in
-// front of its wrapper model. Mirrored because practice mode runs in the page alone (the
-// student's text never reaches Python); tests/test_web_exercise.py runs it on the stubs and solutions.
+// front of its wrapper model; tests/test_web_exercise.py runs it on the stubs and solutions.
+// Why in JavaScript too: practice mode runs in the page alone (the student's text never
+// reaches Python).
 import { ModelError, parseModel } from "./header.js";
 
 const COMMENTS = /\/\/[^\n]*|\/\*[\s\S]*?\*\//g;

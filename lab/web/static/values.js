@@ -2,6 +2,8 @@
 // (lab/models.py), parse_rgb (lab/errors.py) and the app's sliders (lab/app/params.py).
 // Pure functions: tests/test_web_mirrors.py checks them against the Python on a table of
 // cases. The messages are the page's own (shorter than the command line's).
+// Why in JavaScript too: every slider and text box of the page parses as the desktop's does,
+// without a server.
 import { PY_FLOAT, formatG } from "./header.js";
 
 export const SLIDER_STEPS = 1000;
