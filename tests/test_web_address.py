@@ -54,3 +54,32 @@ def test_single_actions_update_the_address_at_once(page):
     value = page.evaluate("brdfLab.moveSlider(0, 'ke', 420)")  # the test API: at once
     assert f"ke={value:g}" in page.evaluate("location.hash")
     assert page.errors == []
+
+
+def test_settings_go_by_their_registry_names_and_old_keys_still_read(page):
+    """A view setting is one name in Python, the page and the address (phi_d, lobe_yaw,
+    sh_order, polar_cos...): its default and range come from the registry; an older
+    address's keys (phid, lyaw, sh, cos) still read and are written anew; a value out of
+    range is named with the registry's range."""
+    from lab import views
+
+    specs = views.all_settings()
+    page.evaluate("location.hash = 'model=phong&views=slice,sh&phid=45&lyaw=0.3&sh=4&cos=1'")
+    page.wait_for_function("brdfLab.state.settings.phi_d === 45")
+    got = page.evaluate(
+        "(s => [s.phi_d, s.lobe_yaw, s.sh_order, s.polar_cos, s.shape])(brdfLab.state.settings)"
+    )
+    assert got == [45, 0.3, 4, True, specs["shape"].default]
+    address = page.evaluate("location.hash")
+    for key in ("phi_d=45", "lobe_yaw=0.3", "sh_order=4", "polar_cos=1"):
+        assert key in address, (key, address)
+    assert "phid=" not in address and "lyaw=" not in address
+    # The φd slider is built from the registry's range and shows the setting.
+    slider = page.evaluate("(e => [e.min, e.max, e.value])(document.querySelector('#phi-d'))")
+    assert slider == [f"{specs['phi_d'].minimum:g}", f"{specs['phi_d'].maximum:g}", "45"]
+    page.evaluate("location.hash = 'model=phong&sh_order=40&shape=torus'")
+    page.wait_for_function("brdfLab.notes().length > 0")
+    notes = page.evaluate("brdfLab.notes()")
+    assert notes == ["sh_order=40: give a number from 0 to 16"]
+    assert page.evaluate("brdfLab.state.settings.shape") == 0  # a choice by its name
+    assert page.errors == []
