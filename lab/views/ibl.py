@@ -4,6 +4,7 @@ progressive Monte Carlo on the GPU (lab/ibl, shaders/views/ibl.glsl)."""
 from __future__ import annotations
 
 from lab.views import PlotJob, Setting, ViewSpec
+from lab.views.object import SHAPES
 
 # Kept here (not imported from lab.ibl) so the registry stays light; tests tie them.
 ENVIRONMENTS = ("sky", "furnace", "studio", "grey_room")
@@ -15,8 +16,8 @@ SEQUENCE_TITLES = ("random", "Sobol'")
 STOP_ERRORS = (0.02, 0.01, 0.005, 0.0025)
 STOP_SECONDS = (10.0, 60.0, 300.0, 1800.0)
 COMPARE = ("alone", *(f"vs {s}" for s in STRATEGIES))
-# What is lit: the sphere, or the object view's shapes (its yaw and pitch turn them).
-TARGETS = ("sphere", "torus", "rounded box", "bumpy sphere")
+# What is lit: the sphere, or the object view's other shapes (its yaw and pitch turn them).
+TARGETS = ("sphere", *(shape for shape in SHAPES if shape != "sphere"))
 
 
 def plot(job: PlotJob) -> None:
