@@ -123,7 +123,8 @@ class WebBench:
         )
         if self.floor_frame_ms:
             slider += (
-                f"; floor page p95 {p95(self.floor_frame_ms):.1f} ms; p95 / floor = "
+                f"; floor page p50 {median(self.floor_frame_ms):.1f} ms, "
+                f"p95 {p95(self.floor_frame_ms):.1f} ms; p95 / floor = "
                 f"{ratios['slider']:.2f} (target <= {SLIDER_RATIO}): "
                 f"{verdict(ratios['slider'] <= SLIDER_RATIO)}"
             )
