@@ -103,3 +103,19 @@ def test_a_view_of_four_files_appears_everywhere(tmp_path):
     np.testing.assert_allclose([low, high], 2 * 0.8 / np.pi, rtol=1e-4)
     assert "views=hemi" in found["hash"] and "hemi_gain=3" in found["hash"]
     assert found["notes"] == [] and found["errors"] == []
+
+
+def test_the_live_server_serves_a_plug_in_views_page_module(extra_view):
+    """`brdf-lab serve` finds views/NAME.js where the registry's view is (beside a plug-in's
+    module), as the exported site has it."""
+    import urllib.request
+
+    from lab.web.site import serving
+
+    with serving() as url:
+        text = urllib.request.urlopen(url + "views/retro.js").read().decode()
+        page = json.loads(urllib.request.urlopen(url + "manifest.json").read())
+    assert text == (ROOT / "tests" / "extra_views" / "retro.js").read_text(encoding="utf-8")
+    assert {"name": "retro", "page": "views/retro.js"}.items() <= next(
+        v for v in page["views"] if v["name"] == "retro"
+    ).items()
