@@ -92,6 +92,8 @@ class ViewSpec:
     widget: str = ""  # "module:Class" of its Qt widget (imported only by the app)
     plot: Callable[[PlotJob], None] | None = None  # its PNG for `render --view` (None: app only)
     order: int = 100  # position in menus and docks
+    # Constants its web page module reads (the manifest's "data"): written here once.
+    page_data: dict = field(default_factory=dict)
 
     def widget_class(self):
         module, _, name = self.widget.partition(":")
@@ -189,6 +191,7 @@ def manifest() -> list[dict]:
             "title": v.title,
             "short_title": v.short_title or v.title,
             "order": v.order,
+            "data": v.page_data,
             "settings": {
                 name: {
                     "default": s.default,

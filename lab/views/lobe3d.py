@@ -440,6 +440,7 @@ VIEW = ViewSpec(
     },
     dock=("right", 1),
     short_title="Lobe",
+    page_data={"grid": LOBE_GRID, "fast_grid": LOBE_FAST_GRID},
     size=(0.3, 0.42),
     widget="lab.app.views.lobe3d:LobeView",
     plot=plot,

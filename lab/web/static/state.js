@@ -66,6 +66,11 @@ export class LabState {
     this.defaultSettings();
   }
 
+  /** The constants view `name`'s Python module sends its page module (ViewSpec.page_data). */
+  viewData(name) {
+    return this.registry.find((v) => v.name === name)?.data ?? {};
+  }
+
   /** The page modules' views in the registry's order (the views the page can show). */
   get pageViews() {
     return this.registry.filter((v) => this.modules[v.name]).map((v) => v.name);

@@ -7,8 +7,6 @@ import { el, viewBox } from "../dom.js";
 import { direction } from "../geometry.js";
 import { VERSION_LINES, assembleFragment, finishProgram, floatTexture, startProgram, translateLog } from "../assemble.js";
 
-export const LOBE_GRID = [61, 121]; // vertices in theta_o and phi_o (lab/views/lobe3d.py)
-export const LOBE_FAST_GRID = [25, 49]; // while a slider moves
 const TARGET = [0, 0, 0.3];
 const DISTANCE = 5;
 const SCALE = 0.85;
@@ -90,6 +88,11 @@ export class LobeView {
     this.panel = panel;
     this.lab = panel.lab;
     const lab = this.lab;
+    // Vertices in θo and φo, full and while a slider moves (lab/views/lobe3d.py's, sent
+    // in the manifest).
+    const { grid, fast_grid: fastGrid } = lab.viewData("lobe3d");
+    this.grid = grid;
+    this.fastGrid = fastGrid;
     this.canvas = el("canvas", { class: "lobe3d", width: lab.size, height: Math.round(lab.size * 0.75) });
     this.root = viewBox(this.canvas, "3D lobe", () => `${panel.name}_lobe3d.png`);
     this.wire = el("input", { type: "checkbox" });
@@ -153,14 +156,14 @@ export class LobeView {
     const key = this.peakKey();
     if (this.peakCache?.model === this.panel.model && this.peakCache.key === key) return null;
     const light = this.lab.lights[0];
-    const [rows, cols] = LOBE_GRID;
+    const [rows, cols] = this.grid;
     const n = rows * cols;
     // The grid's directions change with the light only (not while a parameter moves).
     const lightKey = `${light.theta},${light.phi}`;
     if (this.directions?.key !== lightKey) {
       const thetaI = Math.fround((light.theta * Math.PI) / 180);
       const phiI = Math.fround((light.phi * Math.PI) / 180);
-      const angles = lobeGridAngles(LOBE_GRID, thetaI, phiI);
+      const angles = lobeGridAngles(this.grid, thetaI, phiI);
       const L = new Float32Array(4 * n);
       const V = new Float32Array(4 * n);
       const Ld = [Math.sin(thetaI) * Math.cos(phiI), Math.sin(thetaI) * Math.sin(phiI), Math.cos(thetaI)];
@@ -185,7 +188,7 @@ export class LobeView {
     const light = lab.lights[0];
     const f = this.panel.collect(queued.pass);
     const { angles, V } = this.directions;
-    const n = LOBE_GRID[0] * LOBE_GRID[1];
+    const n = this.grid[0] * this.grid[1];
     // As lobe_mesh_peak.glsl: the luminance (times cos θo when asked), and the largest
     // value away from grazing, where some models diverge.
     const values = new Float32Array(n);
@@ -314,7 +317,7 @@ export class LobeView {
   drawMesh(scale, { pixel = false } = {}) {
     const lab = this.lab;
     const gl = this.panel.gl;
-    const grid = lab.fast ? LOBE_FAST_GRID : LOBE_GRID;
+    const grid = lab.fast ? this.fastGrid : this.grid;
     // While the hand moves, half the resolution (a quarter of the pixels to draw and read).
     const step = lab.fast ? 2 : 1;
     const width = Math.ceil(this.canvas.width / step);
@@ -452,7 +455,7 @@ export class LobeView {
    * the camera, and the value at every vertex of the full grid (row i = theta_o). */
   read() {
     const [width, height] = this.size;
-    const grid = Array.from({ length: LOBE_GRID[0] * LOBE_GRID[1] }, (_, k) => this.peakCache?.values[k]);
+    const grid = Array.from({ length: this.grid[0] * this.grid[1] }, (_, k) => this.peakCache?.values[k]);
     return { width, height, data: this.data, scale: this.scale, peak: this.peakCache?.value, grid };
   }
 }
