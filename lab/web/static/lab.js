@@ -111,6 +111,7 @@ async function main(lab) {
   buildLights(lab);
   fitEmbed(lab);
   cancelFrame();
+  lab.builtMs = performance.now(); // manifest, page modules, address and panels ready
   renderNow();
   lab.firstRenderMs = performance.now(); // since navigation start
   lab.coreOnly = false;

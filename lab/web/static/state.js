@@ -45,6 +45,7 @@ export class LabState {
     this.exerciseList = [];
     this.environments = null; // the IBL view's maps: names and size
     this.measuredCode = ""; // lab/measured/measured.glsl
+    this.builtMs = null; // the page built, nothing drawn yet (ms since navigation)
     this.firstRenderMs = null; // the sphere and polar plot of every panel drawn (ms since navigation)
     this.viewsRenderMs = null; // every view in sight drawn, the costly ones coarse
     this.fullRenderMs = null; // every view at full quality
