@@ -1,7 +1,7 @@
 // Showing a state as a whole: an address typed, followed or bookmarked, a desktop preset,
 // or "reset". Each rebuilds the panels and the page-wide controls from the state.
 import { $, showNotes } from "./dom.js";
-import { hashOf, presetHash, readHash } from "./hash.js";
+import { presetHash, readHash } from "./hash.js";
 import { buildLights } from "./lights.js";
 import { addPanel, fitEmbed } from "./panels.js";
 import { openExercise } from "./editing.js";
@@ -62,4 +62,3 @@ export function reset(lab) {
   writeHash();
 }
 
-export { hashOf };

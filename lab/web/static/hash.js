@@ -10,7 +10,7 @@ import { DEFAULT_SIZE, MAX_PANELS, round } from "./state.js";
 
 // Keys of older addresses (links and slides made before the settings took the registry's
 // names): still read, never written.
-export const OLD_KEYS = { cos: "polar_cos", log: "polar_log", phio: "phi_o", phid: "phi_d", lyaw: "lobe_yaw",
+const OLD_KEYS = { cos: "polar_cos", log: "polar_log", phio: "phi_o", phid: "phi_d", lyaw: "lobe_yaw",
   lpitch: "lobe_pitch", lzoom: "lobe_zoom", sh: "sh_order" };
 // Desktop settings the page keeps otherwise: the light (light=), the ambient level (the
 // page's is R,G,B) and the object's light count (the page's lights are its own).
@@ -20,7 +20,7 @@ export const clampTheta = (theta) => round(Math.min(Math.max(theta, 0), 90));
 export const wrapPhi = (phi) => round(((phi % 360) + 540) % 360 - 180);
 
 /** A registry setting's value from address text, or a note saying what to write. */
-export function readSetting(spec, name, text) {
+function readSetting(spec, name, text) {
   if (spec.kind === "bool") return { value: text !== "0" && text !== "false" };
   const index = spec.choices.indexOf(text);
   const number = index >= 0 ? index : Number(text);

@@ -12,7 +12,7 @@ import { paramControl } from "./controls.js";
 import { PALETTE } from "./state.js";
 
 export const POLAR_STEPS = 181; // theta_o from -90 to 90 degrees in 1-degree steps
-export const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
+const EMBED_PLOT = 1.5; // embedded in a slide: the plot's width over the sphere's
 const SPHERE_FAST_MIN = 384; // spheres this large draw at half resolution while a slider moves
 
 /** Views off screen skip their (costly) renders; one that comes into sight and missed a

@@ -6,7 +6,7 @@ import { Panel } from "./panel.js";
 import { MAX_PANELS } from "./state.js";
 
 /** "+ model" is off once the page shows as many models as it can. */
-export function showAddModel(lab) {
+function showAddModel(lab) {
   const button = $("#add-model");
   button.disabled = lab.panels.length >= MAX_PANELS;
   button.title = button.disabled ? `at most ${MAX_PANELS} models side by side`

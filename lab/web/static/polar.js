@@ -53,7 +53,7 @@ export function drawPolars(lab) {
 
 
 /** Lobes on a half disc, 0 deg = the normal, rings labelled with their values. */
-export function drawPolar(lab, canvas, curves, thetaI, scale, legend = false) {
+function drawPolar(lab, canvas, curves, thetaI, scale, legend = false) {
   const C = lab.constants;
   const log = lab.settings.polar_log;
   // Radius (0..1 of the plot's) of value f on a scale whose outer circle is `scale`.

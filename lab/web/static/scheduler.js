@@ -56,7 +56,7 @@ function writeHashSoon() {
   else hashTimer = setTimeout(writeHash, wait);
 }
 
-export function scheduleRender() {
+function scheduleRender() {
   writeHashSoon();
   if (!pending) pending = requestAnimationFrame(() => {
     pending = 0;

@@ -8,7 +8,7 @@ export const DEFAULT_SIZE = 384; // render size of a sphere (the address's size=
 // One colour per panel, in every view that overlays models (the desktop's first colours).
 export const PALETTE = ["#56b4e9", "#e69f00", "#009e73", "#f0e442", "#cc79a7", "#d55e00"]; // Okabe-Ito: apart under colour blindness (tests/test_a11y_colour.py)
 // The page's first light (theta 0: at the eye); the desktop's default light is its own.
-export const DEFAULT_LIGHT = { theta: 45, phi: 0, rgb: [1, 1, 1] };
+const DEFAULT_LIGHT = { theta: 45, phi: 0, rgb: [1, 1, 1] };
 // The views every panel draws itself (panel.js, polar.js); the others are page modules.
 export const CORE_VIEWS = ["sphere", "polar"];
 

@@ -11,7 +11,7 @@ import { round } from "./state.js";
 const controlled = [];
 
 /** The id of a setting's control ("phi_d" -> "phi-d"; its value shows in "phi-d-text"). */
-export const controlId = (name) => name.replace(/_/g, "-");
+const controlId = (name) => name.replace(/_/g, "-");
 
 /** The control of registry setting `name`, which sets it and draws again. */
 function settingControl(lab, name) {
