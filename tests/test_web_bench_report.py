@@ -46,6 +46,8 @@ def test_report_says_missed_and_what_waited_out_of_the_window():
     assert "p95 / floor = 2.50 (target <= 1.3): MISSED" in text
     assert "full quality" not in text
     assert text.endswith("out of the window (drawn when scrolled to or idle): object")
+    report.offscreen = ("3D lobe", "spherical harmonics")  # both views of "lobe3d,sh"
+    assert report.report().endswith("(a smaller --size brings views into sight)")
 
 
 def test_comparison_prints_both_medians_and_the_difference():

@@ -135,6 +135,11 @@ class WebBench:
             lines.append(
                 f"  out of the window (drawn when scrolled to or idle): {', '.join(self.offscreen)}"
             )
+        if self.views and len(self.offscreen) >= len(self.views.split(",")):
+            lines.append(
+                "  no view is inside the window at this size: the views figure is a frame with "
+                "none to draw (a smaller --size brings views into sight)"
+            )
         return "\n".join(lines)
 
     def comparison(self) -> str:
