@@ -1,7 +1,6 @@
 // The microfacet terms on their own, as lab/views/terms.py draws them: D against θh (log),
 // G against θo in light 1's plane of incidence, F against θd, from the model's own
 // MICROFACET_TERMS through shaders/views/terms.glsl.
-import { floatTexture } from "../assemble.js";
 import { formatG } from "../header.js";
 import { clearedPlot } from "../plotscale.js";
 import { el, viewBox } from "../dom.js";
@@ -37,30 +36,47 @@ export class TermsView {
   }
 
   render() {
-    this.terms = null;
-    if (!hasTerms(this.panel.model)) {
-      this.draw();
-      return;
-    }
-    const gl = this.panel.gl;
-    const [L, V] = this.pairs();
-    const n = L.length;
-    const textures = [L, V].map((dirs) => {
+    this.submit();
+    this.collect();
+    this.process();
+  }
+
+  /** Queues the two passes (D and G; F) on direction textures kept while light 1 stays
+   * (a moving parameter uploads nothing); both are read back after the other views queued
+   * theirs. */
+  submit() {
+    this.passes = null;
+    if (!hasTerms(this.panel.model)) return;
+    const { theta, phi } = this.lab.lights[0];
+    const n = 2 * ANGLES.length + 181;
+    const texture = (which) => this.panel.heldTexture(`terms ${which}`, `${theta},${phi}`, n, 1, () => {
       const data = new Float32Array(4 * n);
-      dirs.forEach((d, k) => data.set(d, 4 * k));
-      return floatTexture(gl, n, 1, data);
+      this.pairs()[which].forEach((d, k) => data.set(d, 4 * k));
+      return data;
     });
-    const parts = [0, 1].map((part) => this.panel.run("terms", n, 1, { u_L: 0, u_V: 1, u_part: part }, { textures }));
-    textures.forEach((t) => gl.deleteTexture(t));
-    const k = ANGLES.length;
-    const m = k + 181;
-    this.terms = {
-      theta: ANGLES,
-      D: ANGLES.map((_, i) => parts[0][4 * i]),
-      theta_o: Array.from({ length: 181 }, (_, i) => i - 90),
-      G: Array.from({ length: 181 }, (_, i) => parts[0][4 * (k + i) + 1]),
-      F: ANGLES.map((_, i) => Array.from(parts[1].subarray(4 * (m + i), 4 * (m + i) + 3))),
-    };
+    const textures = [texture(0), texture(1)];
+    this.passes = [0, 1].map((part) => this.panel.draw("terms", n, 1, { u_L: 0, u_V: 1, u_part: part },
+      { textures, tag: `terms ${part}` }));
+  }
+
+  collect() {
+    this.parts = this.passes ? this.passes.map((pass) => this.panel.collect(pass)) : null;
+  }
+
+  process() {
+    this.terms = null;
+    if (this.parts) {
+      const parts = this.parts;
+      const k = ANGLES.length;
+      const m = k + 181;
+      this.terms = {
+        theta: ANGLES,
+        D: ANGLES.map((_, i) => parts[0][4 * i]),
+        theta_o: Array.from({ length: 181 }, (_, i) => i - 90),
+        G: Array.from({ length: 181 }, (_, i) => parts[0][4 * (k + i) + 1]),
+        F: ANGLES.map((_, i) => Array.from(parts[1].subarray(4 * (m + i), 4 * (m + i) + 3))),
+      };
+    }
     this.draw();
   }
 
