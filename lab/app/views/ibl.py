@@ -158,17 +158,22 @@ class IBLView(View):
         combos[6].setToolTip("...or until this much time is spent")
         for widget in (combos[3], combos[0], self.open_button, combos[1], combos[2]):
             self.tools.addWidget(widget)
-        for combo in combos[4:]:  # the second row: how it refines, and when it stops
-            combo.setMinimumContentsLength(4)
+        # The second row: how it refines and when it stops, each choice shown whole; the
+        # third: the environment's rotation and exposure (one row of all would widen the dock
+        # past a 1024 px screen).
         second = QHBoxLayout()
         for combo in combos[4:]:
+            combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToContents)
             second.addWidget(combo)
-        second.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
-        second.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
         second.addWidget(QLabel("at most"))
         second.addWidget(self.samples)
+        second.addStretch(1)
         self.second = second
         self.layout_.addLayout(second)
+        third = QHBoxLayout()
+        third.addWidget(SettingSlider.of(s, "ibl_rotation"), 1)
+        third.addWidget(SettingSlider.of(s, "ibl_exposure"), 1)
+        self.layout_.addLayout(third)
         self.canvas = ImageRow()
         self.canvas.setMinimumSize(64, 48)
         # One line whatever the width: in a narrow dock the short form (count and gain),
