@@ -9,6 +9,7 @@ points and the correct rewrites none.
 
 from __future__ import annotations
 
+import importlib.util
 import shutil
 import sys
 from pathlib import Path
@@ -26,8 +27,13 @@ ROOT = Path(__file__).resolve().parents[1]
 EXERCISE = load_exercise(ROOT / "exercises" / "11_brdf_properties")
 SEEDS = 50
 HERE = ROOT / "tests" / "exercise_11"
-sys.path.insert(0, str(HERE))
-import measure  # noqa: E402 - the batch's own reader (also prints BEFORE/AFTER figures)
+# Loaded under its own name: tests/heldout and tests/exercise_11 each have a measure.py.
+_spec = importlib.util.spec_from_file_location("exercise_11_measure", HERE / "measure.py")
+measure = importlib.util.module_from_spec(
+    _spec
+)  # the batch's own reader (also prints BEFORE/AFTER figures)
+sys.modules["exercise_11_measure"] = measure  # its dataclasses look their module up
+_spec.loader.exec_module(measure)
 
 
 @pytest.fixture(scope="module")
