@@ -278,7 +278,11 @@ def build_parser(features: list[str] = FEATURE_CLIS) -> argparse.ArgumentParser:
         metavar="NAME|FILE",
         help="ibl view: sky, furnace, studio, grey_room or an equirectangular .hdr/.exr file",
     )
-    p.add_argument("--strategy", default="mis_power", help="ibl view: how directions are drawn")
+    p.add_argument(
+        "--strategy",
+        default="auto",
+        help="ibl view: how directions are drawn (auto: BRDF sampling under an even map, else MIS)",
+    )
     p.add_argument("--samples", type=int, default=256, help="ibl view: samples per pixel")
     p.add_argument("--rotate", type=float, default=0.0, help="ibl view: environment turn (deg)")
     p.add_argument(
