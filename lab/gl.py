@@ -61,3 +61,16 @@ def describe(ctx: moderngl.Context) -> str:
     """Renderer and version, e.g. 'llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5'."""
     major, minor = divmod(ctx.version_code // 10, 10)
     return f"{ctx.info['GL_RENDERER']}, OpenGL {major}.{minor}"
+
+
+def table_texture(ctx: moderngl.Context, array) -> moderngl.Texture:
+    """A float32 table (rows, columns[, components]) as a texture read texel by texel
+    (NEAREST): a lookup table or a sampling distribution, never filtered."""
+    import numpy as np
+
+    data = np.ascontiguousarray(array, dtype=np.float32)
+    rows, columns = data.shape[:2]
+    components = 1 if data.ndim == 2 else data.shape[2]
+    texture = ctx.texture((columns, rows), components, data, dtype="f4")
+    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    return texture

@@ -14,6 +14,7 @@ import moderngl
 import numpy as np
 
 from lab.constants import LUMA
+from lab.gl import table_texture
 
 PROCEDURAL = ("sky", "furnace", "studio", "grey_room")
 FILE_TYPES = (".hdr", ".pic", ".exr")
@@ -246,18 +247,9 @@ class Environment:
 
     def bind(self, ctx: moderngl.Context) -> dict:
         if not self._textures:
-            w, h = self.size
-            t = self.tables
-            data = [
-                (self.image, (w, h), 3),
-                (t.density, (w, h), 1),
-                (t.marginal.reshape(1, -1), (h + 1, 1), 1),
-                (t.conditional, (w + 1, h), 1),
-            ]
-            for array, size, components in data:
-                texture = ctx.texture(size, components, np.ascontiguousarray(array), dtype="f4")
-                texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-                self._textures.append(texture)
+            t = self.tables  # image, density w x h; marginal (h + 1) x 1; conditional (w + 1) x h
+            tables = [self.image, t.density, t.marginal.reshape(1, -1), t.conditional]
+            self._textures = [table_texture(ctx, array) for array in tables]
         for unit, texture in enumerate(self._textures):
             texture.use(ENV_UNIT + unit)
         return {

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import moderngl
 import numpy as np
 
+from lab.gl import table_texture
 from lab.models import SHADER_DIR
 
 GLSL = SHADER_DIR / "terms" / "sampling_table.glsl"
@@ -74,13 +75,8 @@ class Table:
     def bind(self, ctx: moderngl.Context) -> dict:
         """Upload (once) and bind the three textures; the uniforms that name their units."""
         if not self._textures:
-            for array in (self.density, self.marginal, self.conditional):
-                h, w = array.shape[:2]
-                components = 1 if array.ndim == 2 else array.shape[2]
-                data = np.ascontiguousarray(array)
-                texture = ctx.texture((w, h), components, data, dtype="f4")
-                texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-                self._textures.append(texture)
+            tables = (self.density, self.marginal, self.conditional)
+            self._textures = [table_texture(ctx, array) for array in tables]
         for unit, texture in enumerate(self._textures):
             texture.use(UNIT + unit)
         return {
