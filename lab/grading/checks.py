@@ -36,6 +36,7 @@ from lab.grading.exercise import (
     read_submission,
     wrapper_origin,
 )
+from lab.grading import tables
 from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.grading.kinds.polar import polar_angles
 from lab.grading.kinds.probe import probe_angles, special_angles
@@ -125,6 +126,7 @@ def hidden_variant(check: Check, model: Model, seed: int, index: int) -> Check:
         seed=int(rng.integers(1 << 30)),
         theta_i=_drawn_theta(rng, aim or infer_purpose(check.theta_i)),
         phi_i=float(rng.uniform(0, 360)),
+        table=tables.hidden(check.table, seed),  # its own draw: the others stay as they were
     )
 
 
@@ -286,6 +288,7 @@ class Grader:
         if twin is not None:
             twin.loop_stopped = None
         try:
+            model = tables.bound(self.renderer, model, check)  # the diagnosis reads it too
             raw = render(self.renderer, model, check)
         except ShaderCompileError as err:
             errors = []

@@ -95,6 +95,13 @@ TYPES: dict[str, tuple[Any, str]] = {
         "a list of ['old text', 'new text'] pairs, e.g. [['kd * INV_PI', 'kd']]",
     ),
     "table": (lambda v: isinstance(v, dict), "a table, e.g. [defaults] or { ... }"),
+    "tabulated": (
+        lambda v: (
+            isinstance(v, dict) or (isinstance(v, list) and all(isinstance(x, dict) for x in v))
+        ),
+        'a model to tabulate or a list of them, e.g. { model = "ggx", params = { alpha = 0.2 }, '
+        "ranges = { alpha = [0.1, 0.5] }, noise = 0.02 }",
+    ),
     "tables": (
         lambda v: isinstance(v, list) and all(isinstance(x, dict) for x in v),
         "an array of tables: one [[checks]] or [[mistake]] header per entry",
@@ -135,24 +142,38 @@ CHECK: tuple[Key, ...] = (
     Key("purpose", "purpose", None, "what each light is for; hidden mode draws within it"),
     Key("same", "same", [], "parameter groups hidden mode draws one value for (isotropy)"),
     Key(
+        "table",
+        "tabulated",
+        None,
+        "a library model the grader tabulates (MERL layout) and binds as a sampler3D (see below)",
+    ),
+    Key(
         "pairs",
         "integer",
         256,
         "random direction pairs (probe: plus 18 special ones)",
-        ("probe", "properties"),
+        ("probe", "properties", "bin_edges"),
     ),
     Key(
         "seed",
         "integer",
         1,
         "fixes the random directions or samples",
-        ("probe", "chi_square", "pdf_integral", "ibl_render", "properties"),
+        ("probe", "chi_square", "pdf_integral", "ibl_render", "properties", "bin_edges"),
     ),
     Key(
-        "rtol", "number", 2e-3, "relative tolerance of each value", ("probe", "polar", "properties")
+        "rtol",
+        "number",
+        2e-3,
+        "relative tolerance of each value",
+        ("probe", "polar", "properties", "bin_edges"),
     ),
     Key(
-        "atol", "number", 1e-4, "absolute tolerance of each value", ("probe", "polar", "properties")
+        "atol",
+        "number",
+        1e-4,
+        "absolute tolerance of each value",
+        ("probe", "polar", "properties", "bin_edges"),
     ),
     Key(
         "theta_i",
@@ -400,6 +421,17 @@ def reference_markdown() -> str:
         "choices stay. Each light is drawn anew within its purpose, at a random azimuth;",
         "`seed` is drawn too. The solution is rendered live with the same draw, so hidden",
         "mode needs `solutions/` beside `exercises/`.",
+        "",
+        "## Tables (`table`)",
+        "",
+        '`table = { model = "ggx", params = { alpha = 0.2 } }` makes the grader tabulate that',
+        "library model in the MERL layout (as `brdf-lab tabulate` does) and bind the table as",
+        "`uniform highp sampler3D u_table;` in the student's file and the solution: texel",
+        "(phi_d, theta_d, theta_h) holds f_r in RGB, read with texelFetch. Its keys: `model`",
+        "(required), `params`, `ranges` (hidden mode draws these), `noise` (relative error per",
+        "bin, default 0), `dims` (bins of theta_h, theta_d, phi_d, default [90, 90, 180]) and",
+        "`uniform` (the sampler's name, default u_table). A list of tables: the committed",
+        "references use the first, hidden mode picks one of them at each seed.",
         "",
         "## Keys each check kind adds",
         "",

@@ -51,6 +51,9 @@ class Check:
     # with_reference): the value kinds measure how well-conditioned each row is with them.
     model: str = ""
     defaults: dict = field(default_factory=dict)
+    # Tables the check binds (lab.grading.tables.TableSpec, from its `table` key): a model
+    # tabulated by the grader; hidden mode picks one and draws its parameters.
+    table: tuple = ()
 
 
 # Light directions by what they are for: the polar angle in degrees from the view axis (a

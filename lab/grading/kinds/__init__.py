@@ -23,6 +23,7 @@ from here, with no other edit.
 from __future__ import annotations
 
 import base64
+import functools
 import html
 import importlib
 import pkgutil
@@ -40,6 +41,7 @@ from lab.grading.spec import (
     parse_ranges,
     parse_same,
 )
+from lab.grading.tables import bound, parse_table
 from lab.grading.visuals import difference_legend, polar_svg
 
 if TYPE_CHECKING:
@@ -63,6 +65,20 @@ class CheckKind:
     # light at theta_i, phi_i) or "" (the kind draws its own directions: no purpose).
     purpose_of = "theta_i"
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        """Each kind's `render` draws the model bound to the check's `table`, if it names one
+        (lab.grading.tables): every kind reads tables with no code of its own."""
+        super().__init_subclass__(**kwargs)
+        own = cls.__dict__.get("render")
+        if own is not None and not getattr(own, "binds_tables", False):
+
+            @functools.wraps(own)
+            def render(self, renderer, model, check, _own=own):
+                return _own(self, renderer, bound(renderer, model, check), check)
+
+            render.binds_tables = True  # type: ignore[attr-defined]
+            cls.render = render
+
     # -- inputs ------------------------------------------------------------------------------
     def parse(self, table: dict, where: str) -> Check:
         """A Check from its table in exercise.toml (the exercise's defaults merged in, `kind`
@@ -79,6 +95,7 @@ class CheckKind:
         here = f"{where}: check {table.get('name', '?')}"
         ranges = parse_ranges(table.pop("ranges", {}), here)
         same = parse_same(table.pop("same", []), here)
+        tabled = parse_table(table.pop("table", []), here)
         purpose: tuple[str, ...] = ()
         if "purpose" in table:
             count = {"lights": len(lights), "theta_i": 1}.get(self.purpose_of, 0)
@@ -96,6 +113,7 @@ class CheckKind:
             purpose=purpose,
             ranges=ranges,
             same=same,
+            table=tabled,
             **table,
         )
         self.validate(check, where)

@@ -1,0 +1,212 @@
+"""Checks that read a tabulated BRDF: a check's `table` key, the table the grader makes from
+it, and the model bound to that table while the check renders.
+
+`table = { model = "ggx", params = { alpha = 0.2 } }` in a [[checks]] table tells the grader
+to tabulate a library model in the MERL layout (lab.measured.tabulate, the same function as
+`brdf-lab tabulate`) and bind the table as a 3D float texture (texel (phi_d, theta_d, theta_h),
+RGB f_r; lab.measured.model, the texture the lab's `measured` model reads) to the uniform
+`uniform` of the student's file and of the solution alike. A list of such tables lets hidden
+mode pick one of them; each draws its parameters in its own `ranges`.
+
+Every kind gets this without code of its own: CheckKind.render is wrapped (kinds/__init__.py)
+so that the model it draws is `bound` to the check's table first.
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from collections import OrderedDict
+from dataclasses import dataclass, fields, make_dataclass
+from typing import Any
+
+import numpy as np
+
+from lab.grading.spec import ExerciseError
+from lab.measured.merl import MERL_DIMS
+from lab.models import Model, ModelError, load_model, model_names
+
+UNIFORM = "u_table"  # the sampler a table is bound to unless the check says otherwise
+KEYS = ("model", "params", "ranges", "noise", "dims", "uniform")
+_CACHE = 6  # tables kept per process (17.5 MB of texture each at the MERL size)
+
+
+@dataclass(frozen=True)
+class TableSpec:
+    """One table a check reads: which model is tabulated, with what, and where it is bound."""
+
+    model: str
+    params: tuple = ()  # sorted (name, value) pairs
+    ranges: tuple = ()  # sorted (name, (low, high)) pairs: hidden mode draws within
+    noise: float = 0.0  # relative Gaussian error per bin (lab.measured.tabulate)
+    dims: tuple[int, int, int] = MERL_DIMS
+    uniform: str = UNIFORM
+
+    def values(self) -> dict[str, Any]:
+        return dict(self.params)
+
+
+def _frozen(value: Any) -> Any:
+    return tuple(float(v) for v in value) if isinstance(value, list) else value
+
+
+def parse_table(raw: Any, where: str) -> tuple[TableSpec, ...]:
+    """`table = {...}` or `table = [{...}, ...]` from a [[checks]] table, validated against
+    the tabulated model's header: ExerciseError saying what to write otherwise."""
+    if raw is None or raw == []:
+        return ()
+    entries = raw if isinstance(raw, list) else [raw]
+    out = []
+    for number, entry in enumerate(entries, 1):
+        here = f"{where}: table" + (f" {number}" if len(entries) > 1 else "")
+        if not isinstance(entry, dict):
+            raise ExerciseError(
+                f'{here}: write a table such as {{ model = "ggx", params = {{ alpha = 0.2 }} }}'
+            )
+        unknown = [k for k in entry if k not in KEYS]
+        if unknown:
+            raise ExerciseError(f"{here}: no key {unknown[0]!r}; its keys are {', '.join(KEYS)}")
+        name = entry.get("model")
+        if not isinstance(name, str) or name not in model_names():
+            raise ExerciseError(
+                f"{here}: model = {name!r} should name a library model to tabulate, one of "
+                f"{', '.join(model_names())}"
+            )
+        header = load_model(name).params
+        params = entry.get("params", {})
+        ranges = entry.get("ranges", {})
+        for key, table in (("params", params), ("ranges", ranges)):
+            if not isinstance(table, dict):
+                raise ExerciseError(f"{here}: {key} should be a table, e.g. {{ alpha = 0.2 }}")
+            for pname in table:
+                if pname not in header:
+                    raise ExerciseError(
+                        f"{here}: {key} names {pname!r}, which is no parameter of {name} "
+                        f"(its header declares {', '.join(header)})"
+                    )
+        try:
+            load_model(name).resolve({k: _frozen(v) for k, v in params.items()})
+        except (ModelError, TypeError, ValueError) as err:
+            raise ExerciseError(f"{here}: params: {err}") from None
+        for pname, pair in ranges.items():
+            p = header[pname]
+            ok = isinstance(pair, list) and len(pair) == 2
+            ok = ok and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in pair)
+            if not ok or not p.minimum <= pair[0] <= pair[1] <= p.maximum:
+                raise ExerciseError(
+                    f"{here}: ranges.{pname} = {pair!r} should be [low, high] within the "
+                    f"header's range [{p.minimum:g}, {p.maximum:g}]"
+                )
+        noise = entry.get("noise", 0.0)
+        if not isinstance(noise, (int, float)) or isinstance(noise, bool) or not 0 <= noise < 1:
+            raise ExerciseError(f"{here}: noise = {noise!r} should be a number in [0, 1)")
+        dims = entry.get("dims", list(MERL_DIMS))
+        if not (
+            isinstance(dims, list)
+            and len(dims) == 3
+            and all(isinstance(n, int) and 2 <= n <= 256 for n in dims)
+        ):
+            raise ExerciseError(
+                f"{here}: dims = {dims!r} should be three whole numbers 2 to 256, the bins of "
+                "(theta_h, theta_d, phi_d), e.g. [90, 90, 180]"
+            )
+        uniform = entry.get("uniform", UNIFORM)
+        if not isinstance(uniform, str) or not uniform.isidentifier():
+            raise ExerciseError(f"{here}: uniform = {uniform!r} should be a GLSL name")
+        out.append(
+            TableSpec(
+                model=name,
+                params=tuple(sorted((k, _frozen(v)) for k, v in params.items())),
+                ranges=tuple(sorted((k, (float(a), float(b))) for k, (a, b) in ranges.items())),
+                noise=float(noise),
+                dims=tuple(dims),
+                uniform=uniform,
+            )
+        )
+    return tuple(out)
+
+
+def hidden(specs: tuple[TableSpec, ...], seed: int) -> tuple[TableSpec, ...]:
+    """Hidden mode: one of the check's tables, its `ranges` parameters drawn anew.
+
+    The draw depends on the seed and the tables only, so the checks of one seed that name
+    the same tables read one table (tabulated once)."""
+    if not specs:
+        return specs
+    rng = np.random.default_rng([seed, zlib.crc32(repr(specs).encode())])
+    spec = specs[int(rng.integers(len(specs)))]
+    header = load_model(spec.model).params
+    params = dict(spec.params)
+    for name, (low, high) in spec.ranges:
+        param = header[name]
+        if param.kind == "color":
+            params[name] = tuple(float(c) for c in rng.uniform(low, high, 3))
+        elif param.scale == "log" and low > 0.0:
+            params[name] = float(math.exp(rng.uniform(math.log(low), math.log(high))))
+        else:
+            params[name] = float(rng.uniform(low, high))
+    params_drawn = tuple(sorted(params.items()))
+    return (TableSpec(spec.model, params_drawn, (), spec.noise, spec.dims, spec.uniform),)
+
+
+# -- the tables, made on the GPU once per process -----------------------------------------------
+_tables: OrderedDict[tuple, Any] = OrderedDict()  # key -> lab.measured MeasuredModel
+
+
+def measured(renderer, spec: TableSpec):
+    """The lab's `measured` model holding `spec`'s table (tabulated with `renderer` once)."""
+    from lab.measured.model import measured_model
+    from lab.measured.tabulate import tabulate
+
+    key = (spec.model, spec.params, spec.noise, spec.dims)
+    found = _tables.get(key)
+    if found is None:
+        table = tabulate(spec.model, spec.values(), spec.dims, spec.noise, renderer=renderer)
+        found = _tables[key] = measured_model(table)
+        while len(_tables) > _CACHE:
+            _tables.popitem(last=False)[1].release()
+    _tables.move_to_end(key)
+    return found
+
+
+def _bind(self, ctx) -> dict[str, object]:
+    """Bind the table (and whatever the model binds itself) before a draw."""
+    from lab.measured.model import TABLE_UNIT
+
+    inner = getattr(super(type(self), self), "bind", None)
+    uniforms = dict(inner(ctx)) if inner is not None else {}
+    self.table_source.texture(ctx).use(TABLE_UNIT)
+    return {**uniforms, self.table_uniform: TABLE_UNIT}
+
+
+_classes: dict[type, type] = {}
+
+
+def _tabled_class(cls: type) -> type:
+    """A subclass of the model's class that also binds a table (dataclasses.replace keeps
+    it, so the diagnosis's instrumented copies of the model read the table too)."""
+    if cls not in _classes:
+        _classes[cls] = make_dataclass(
+            f"Tabled{cls.__name__}",
+            [("table_source", Any, None), ("table_uniform", str, UNIFORM)],
+            bases=(cls,),
+            namespace={"bind": _bind},
+        )
+    return _classes[cls]
+
+
+def bound(renderer, model: Model, check) -> Model:
+    """`model` bound to the check's table (the first of its `table` list: hidden mode has
+    drawn one already); the model itself where the check reads no table."""
+    specs = getattr(check, "table", ())
+    if not specs:
+        return model
+    spec = specs[0]
+    source = measured(renderer, spec)
+    base = type(model)
+    if base in _classes.values():
+        if model.table_source is source and model.table_uniform == spec.uniform:
+            return model
+        base = base.__mro__[1]
+    values = {f.name: getattr(model, f.name) for f in fields(base) if f.init}
+    return _tabled_class(base)(**values, table_source=source, table_uniform=spec.uniform)
