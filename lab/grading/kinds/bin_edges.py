@@ -1,7 +1,6 @@
 """`kind = "bin_edges"`: f_r at direction pairs placed on a tabulated BRDF's bin grid: bin
 centres, just either side of bin edges (theta_h's square-root spacing near the peak,
-theta_d, phi_d and its fold at 0 and 180 degrees), below the first theta_h centre, and at
-grazing theta_d, where a lookup that misplaces, forgets to fold or fails to wrap or clamp
+theta_d, phi_d and its fold at 0 and 180 degrees) and at grazing theta_d, where a lookup that misplaces, forgets to fold or fails to wrap or clamp
 differs from the solution while random pairs rarely show it.
 
 The grid is that of the check's `table` (lab.grading.tables), else the MERL grid
@@ -18,13 +17,20 @@ import numpy as np
 
 from lab.grading.kinds.values import ValueKind
 from lab.grading.spec import Check
-from lab.measured.merl import MERL_DIMS, directions
+from lab.measured.merl import MERL_DIMS, continuous_index, directions, half_diff
 
 # How far from an edge a row lies, in bins: float32 places a pair to about 1e-4 of a bin
 # (theta_h's first bins are 0.01 degrees wide), so a correct float32 program puts each row
 # in the same bin as the solution; a misplaced bin or a missing fold moves it a whole bin.
 MARGIN = 0.05
 ABOVE = 2e-3  # cos(theta) of both directions at least this: the pair is above the horizon
+# A row is kept only where its position is well-conditioned: directions moved by JITTER
+# radians (several times float32's error in them) move it less than STEADY bins on each
+# axis and keep its bin. Near H = N phi_h, and with it phi_d, is lost to rounding, and a
+# grazing pair's H (L + V nearly 0) is too: such rows would test the arithmetic, not the index.
+JITTER = 2e-6
+STEADY = 0.01
+TRIALS = 4
 
 
 def edge_angles(check: Check) -> np.ndarray:
@@ -57,9 +63,6 @@ def _positions(rng: np.random.Generator, kind: str, n: int, dims) -> np.ndarray:
         pos[:, 2] = np.where(wrap, 0, rng.integers(1, n_p, n)) + side
         pos[:, 2] = np.where(pos[:, 2] < 0.0, pos[:, 2] + n_p, pos[:, 2])
         pos[:, :2] = np.stack([low_h, low_d], axis=1)
-    elif kind == "clamp":  # theta_h below the first bin's centre: nothing to blend below
-        pos[:, 0] = rng.uniform(0.02, 0.45, n)
-        pos[:, 1] = low_d
     elif kind == "grazing":  # theta_d in its last bins: L and V near the horizon
         pos[:, 0] = np.floor(rng.uniform(0.0, 0.1, n) * n_h) + inside[:, 0]
         pos[:, 1] = n_d - 1 - np.floor(rng.uniform(0.0, 0.06 * n_d, n)) + inside[:, 1]
@@ -69,7 +72,7 @@ def _positions(rng: np.random.Generator, kind: str, n: int, dims) -> np.ndarray:
 @functools.lru_cache(maxsize=64)
 def _rows(seed: int, n: int, dims: tuple[int, int, int]) -> np.ndarray:
     rng = np.random.default_rng(seed)
-    shares = {"centre": 2, "theta_h": 4, "theta_d": 2, "phi_d": 4, "clamp": 1, "grazing": 3}
+    shares = {"centre": 2, "theta_h": 5, "theta_d": 2, "phi_d": 4, "grazing": 3}
     total = sum(shares.values())
     counts = {k: n * v // total for k, v in shares.items()}
     counts["theta_h"] += n - sum(counts.values())
@@ -88,15 +91,35 @@ def _rows(seed: int, n: int, dims: tuple[int, int, int]) -> np.ndarray:
             # phi_d and phi_d - 180 degrees are one bin: half of the rows come the other way
             phi_d = np.where(rng.random(len(pos)) < 0.5, phi_d - math.pi, phi_d)
             L, V = directions(theta_h, theta_d, phi_d)
-            keep = (L[:, 2] > ABOVE) & (V[:, 2] > ABOVE)
+            keep = (L[:, 2] > ABOVE) & (V[:, 2] > ABOVE) & _steady(rng, L, V, dims)
             turn = rng.uniform(0.0, 2.0 * math.pi, len(pos))
             pair = np.concatenate([_angles(L, turn), _angles(V, turn)], axis=1)[keep]
             found.append(pair)
             have += len(pair)
+        if have < count:  # the classes are built to fill easily; a tiny custom grid may not
+            raise ValueError(f"bin_edges: only {have} of {count} {kind} rows on grid {dims}")
         rows.append(np.concatenate(found)[:count])
     table = np.concatenate(rows)
     table.flags.writeable = False
     return table
+
+
+def _steady(rng: np.random.Generator, L: np.ndarray, V: np.ndarray, dims) -> np.ndarray:
+    """Rows whose bin position stays put when L and V move by JITTER (see STEADY)."""
+    base = np.stack(continuous_index(*half_diff(L, V), dims), axis=1)
+    ok = np.ones(len(L), dtype=bool)
+    period = float(dims[2])
+    for _ in range(TRIALS):
+        moved = []
+        for d in (L, V):
+            step = rng.normal(size=d.shape)
+            d = d + JITTER * step / np.linalg.norm(step, axis=1, keepdims=True)
+            moved.append(d / np.linalg.norm(d, axis=1, keepdims=True))
+        pos = np.stack(continuous_index(*half_diff(*moved), dims), axis=1)
+        change = np.abs(pos - base)
+        change[:, 2] = np.minimum(change[:, 2], period - change[:, 2])  # phi_d wraps
+        ok &= (change < STEADY).all(axis=1) & (np.floor(pos) == np.floor(base)).all(axis=1)
+    return ok
 
 
 def _angles(d: np.ndarray, turn: np.ndarray) -> np.ndarray:
