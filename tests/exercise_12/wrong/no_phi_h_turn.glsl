@@ -1,5 +1,5 @@
 // WRONG: d turned about the bitangent only (phi_h left in)
-// HINT: phi_h
+// HINT: φh
 // @model measured
 // @title Exercise 12: a tabulated BRDF, looked up in the MERL layout
 // @formula angles: theta_h, theta_d, phi_d, the half/difference angles of Rusinkiewicz

@@ -1,5 +1,5 @@
 // WRONG: theta_h / pi under the square root instead of theta_h / (pi/2)
-// HINT: theta_h
+// HINT: θh is divided by π
 // @model measured
 // @title Exercise 12: a tabulated BRDF, looked up in the MERL layout
 // @formula angles: theta_h, theta_d, phi_d, the half/difference angles of Rusinkiewicz
