@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from lab.glsl import SAMPLER_LINE_BASE, ShaderCompileError, label_of
+from lab.grading import tables
 from lab.grading.compare import (  # noqa: F401 - the names grading code has always used
     bad_values,
     compare_values,
@@ -36,7 +37,6 @@ from lab.grading.exercise import (
     read_submission,
     wrapper_origin,
 )
-from lab.grading import tables
 from lab.grading.kinds import VALUES_FILE, kind_of
 from lab.grading.kinds.polar import polar_angles
 from lab.grading.kinds.probe import probe_angles, special_angles

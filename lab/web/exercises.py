@@ -73,6 +73,8 @@ def grader_only(exercise: Exercise, values) -> list[dict]:
     for check in exercise.checks:
         if kind_of(check).practice(exercise, check, values) is None:
             why = f"the page cannot run {check.kind} checks"
+            if check.table:
+                why = "the page cannot bind the table this check reads (its `table` key)"
             out.append({"name": check.name, "kind": check.kind, "points": check.points, "why": why})
     return out
 

@@ -1,7 +1,8 @@
 """`kind = "bin_edges"`: f_r at direction pairs placed on a tabulated BRDF's bin grid: bin
 centres, just either side of bin edges (theta_h's square-root spacing near the peak,
-theta_d, phi_d and its fold at 0 and 180 degrees) and at grazing theta_d, where a lookup that misplaces, forgets to fold or fails to wrap or clamp
-differs from the solution while random pairs rarely show it.
+theta_d, phi_d and its fold at 0 and 180 degrees) and at grazing theta_d, where a lookup
+that misplaces a bin, forgets to fold or fails to wrap or clamp differs from the solution
+while random pairs rarely show it.
 
 The grid is that of the check's `table` (lab.grading.tables), else the MERL grid
 (90, 90, 180). Rows are drawn from `seed` (`pairs` of them) and turned about the normal by
