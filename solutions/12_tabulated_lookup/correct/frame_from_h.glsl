@@ -33,7 +33,7 @@ vec3 half_diff_angles(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
     vec3 t = cross(b, H);
     float x = dot(L, t);
     float y = dot(L, b);
-    float theta_d = acos(clamp(dot(L, H), -1.0, 1.0));
+    float theta_d = atan(length(vec2(x, y)), dot(L, H));
     float phi_d = x * x + y * y > 1e-14 ? atan(y, x) : 0.0;
     return vec3(theta_h, theta_d, phi_d);
 }
