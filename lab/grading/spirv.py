@@ -104,9 +104,10 @@ def _main(functions: list[str]) -> str:
             args.append(f"lab_in_{location}")
             location += int(array.group()[1:-1]) if array else 1
         call = f"{name}({', '.join(args)})"
-        calls.append(
-            f"    lab_out.rgb += {call};" if result == "vec3" else f"    lab_out.r += {call};"
-        )
+        size = result[-1] if result[-1] in "234" else "1"  # ivec3 counts as vec3, int as float
+        target = {"1": "lab_out.r", "2": "lab_out.rg", "3": "lab_out.rgb", "4": "lab_out"}[size]
+        convert = "float" if size == "1" else f"vec{size}"
+        calls.append(f"    {target} += {convert}({call});")
     lines.append("layout(location = 0) out vec4 lab_out;")
     return "\n".join([*lines, "void main() {", "    lab_out = vec4(0.0);", *calls, "}"])
 
@@ -167,12 +168,21 @@ def opaque(text: str, api: list[str]) -> str:
     return "".join(out) + text[position:]
 
 
+SAMPLER = re.compile(r"^([ \t]*)(uniform\s+(?:(?:highp|mediump|lowp)\s+)?\w*sampler\w+\s)", re.M)
+
+
+def _bound(code: str) -> str:
+    """Vulkan GLSL wants a binding on each sampler the file declares (a table it reads)."""
+    count = iter(range(1, 1000))
+    return SAMPLER.sub(lambda m: f"{m.group(1)}layout(binding = {next(count)}) {m.group(2)}", code)
+
+
 def disassemble(code: str, exercise) -> str | None:
     """The optimised SPIR-V of a submission as text, or None if it does not compile."""
     before, after = _frame(exercise)
     with tempfile.TemporaryDirectory(prefix="brdf-spirv-") as folder:
         source, binary = Path(folder) / "s.frag", Path(folder) / "s.spv"
-        source.write_text(before + code + after, encoding="utf-8")
+        source.write_text(before + _bound(code) + after, encoding="utf-8")
         try:
             steps = [
                 ["glslangValidator", "-V", "--aml", "-o", str(binary), str(source)],
