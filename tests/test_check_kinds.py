@@ -60,6 +60,7 @@ def test_the_lab_kinds_are_registered():
         "pdf_integral",
         "ibl_render",
         "properties",  # exercise 11's tests of a linked model
+        "bin_edges",  # exercise 12's pairs on a table's bin grid
     )
 
 

@@ -144,7 +144,7 @@ CHECK: tuple[Key, ...] = (
     Key(
         "table",
         "tabulated",
-        None,
+        [],
         "a library model the grader tabulates (MERL layout) and binds as a sampler3D (see below)",
     ),
     Key(

@@ -134,7 +134,7 @@ def _angles(d: np.ndarray, turn: np.ndarray) -> np.ndarray:
 
 class BinEdgesKind(ValueKind):
     name = "bin_edges"
-    order = 15
+    order = 62
     purpose_of = ""  # its rows are drawn from `seed` on the table's grid
     what = "pairs on the table's bin grid"
 
