@@ -28,7 +28,7 @@ from lab.models import Model, ModelError, load_model, model_names
 
 UNIFORM = "u_table"  # the sampler a table is bound to unless the check says otherwise
 KEYS = ("model", "params", "ranges", "noise", "dims", "uniform")
-_CACHE = 6  # tables kept per process (17.5 MB of texture each at the MERL size)
+_CACHE = 3  # tables kept per process (about 50 MB each at the MERL size: data and texture)
 
 
 @dataclass(frozen=True)
