@@ -54,7 +54,7 @@ def _positions(rng: np.random.Generator, kind: str, n: int, dims) -> np.ndarray:
     if kind == "centre":
         pos = np.floor(pos) + 0.5
     elif kind == "theta_h":  # half of them in the first bins, a few hundredths of a degree
-        near = rng.integers(min(2, n_h - 1), min(8, n_h), n)
+        near = rng.integers(min(2, n_h - 1), min(5, n_h), n)
         anywhere = rng.integers(1, n_h, n)
         pos[:, 0] = np.where(rng.random(n) < 0.5, near, anywhere) + side
         pos[:, 1] = low_d
