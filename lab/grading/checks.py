@@ -268,6 +268,8 @@ class Grader:
                         "lights": [(lt.theta, lt.phi) for lt in check.lights],
                         "probe_seed": check.seed,
                     }
+                    if check.table:
+                        result.setting["table"] = tables.describe(check.table)
             if index == todo[0][0]:  # header lines the grader put back, named once
                 result.warnings = list(ready.notes)
             if index == todo[-1][0]:

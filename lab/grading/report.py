@@ -202,6 +202,7 @@ def _setting_text(setting: dict) -> str:
         f"hidden mode: seed {setting['seed']}; parameters {values or 'the defaults'}; "
         f"light at θi = {setting.get('theta_i', 0):.1f}°"
         + (f"; sphere lights {lights}" if lights else "")
+        + (f"; a table of {setting['table']}" if setting.get("table") else "")
         + f" (reproduce with: brdf-lab grade EXERCISE --submission FILE --seed {setting['seed']})"
     )
 

@@ -149,6 +149,23 @@ def hidden(specs: tuple[TableSpec, ...], seed: int) -> tuple[TableSpec, ...]:
     return (TableSpec(spec.model, params_drawn, (), spec.noise, spec.dims, spec.uniform),)
 
 
+def describe(specs: tuple[TableSpec, ...]) -> str:
+    """The table a check read, in words (hidden mode's report says which was drawn)."""
+    if not specs:
+        return ""
+    spec = specs[0]
+    values = ", ".join(
+        f"{k}=({', '.join(f'{c:.3g}' for c in v)})"
+        if isinstance(v, tuple)
+        else f"{k}={v:.4g}"
+        if isinstance(v, float)
+        else f"{k}={v}"
+        for k, v in spec.params
+    )
+    noise = f", noise {100 * spec.noise:g}%" if spec.noise else ""
+    return f"{spec.model} ({values or 'its defaults'}{noise})"
+
+
 # -- the tables, made on the GPU once per process -----------------------------------------------
 _tables: OrderedDict[tuple, Any] = OrderedDict()  # key -> lab.measured MeasuredModel
 
