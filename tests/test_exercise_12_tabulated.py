@@ -271,3 +271,28 @@ def test_the_page_leaves_checks_that_read_a_table_to_the_grader():
     for check in EXERCISE.checks:
         assert kind_of(check).practice(EXERCISE, check, {}) is None
     assert all("table" in entry["why"] for entry in grader_only(EXERCISE, {}))
+
+
+def test_any_kind_reads_a_table_the_check_names(grader):
+    """The key is the format's, not exercise 12's: a polar check parsed with a table renders
+    the solution bound to it (the lab's measured model's curve on that table)."""
+    from lab.grading.kinds import find
+
+    polar = find("polar")
+    table = {"model": "blinn_phong", "params": {"ke": 40.0}}
+    check = polar.parse(
+        {
+            "name": "polar.t",
+            "points": 1,
+            "table": table,
+            "theta_i": 40.0,
+            "params": {"interpolation": "linear"},
+        },
+        "test",
+    )
+    assert check.table[0].model == "blinn_phong" and dict(check.table[0].params) == {"ke": 40.0}
+    got = polar.render(grader.renderer, grader.solution_model(EXERCISE), check)
+    measured = tables.measured(grader.renderer, check.table[0])
+    want = grader.renderer.eval_angles(measured, {"interpolation": "linear"}, polar.angles(check))
+    np.testing.assert_array_equal(got, want)
+    assert got.max() > 0.1
