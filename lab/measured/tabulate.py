@@ -23,13 +23,23 @@ def tabulate(
     Noise multiplies each value by (1 + sigma * N(0, 1)), clipped at 0, as a stand-in for
     a gonioreflectometer's error, which grows with the signal.
     """
-    from lab.render import Renderer
-
     if noise < 0 or not np.isfinite(noise):
         raise ValueError(f"noise must be a finite sigma >= 0, not {noise}")
-    renderer = renderer or Renderer()
+    return measure(bin_values(model, values, dims, renderer), dims, noise, seed)
+
+
+def bin_values(
+    model: Model | str, values: dict[str, Value] | None, dims=MERL_DIMS, renderer=None
+) -> np.ndarray:
+    """tabulate's first step: f_r (n, 3) at the bin centres in file order, noise-free."""
+    from lab.render import Renderer
+
     L, V = _grid(tuple(dims))
-    f = renderer.probe(model, values, L, V).astype(np.float64)
+    return (renderer or Renderer()).probe(model, values, L, V).astype(np.float64)
+
+
+def measure(f: np.ndarray, dims, noise: float = 0.0, seed: int = 0) -> MerlTable:
+    """tabulate's second step: the table of noise-free values `f`, with its noise."""
     if noise > 0:
         rng = np.random.default_rng(seed)
         f = np.maximum(f * (1.0 + noise * rng.standard_normal(f.shape)), 0.0)
