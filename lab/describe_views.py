@@ -189,7 +189,9 @@ def lobe3d(
     if k < 0 or v[k] <= 0:
         return head + spiked + f"{what} is 0 everywhere."
     theta, phi = float(angles[2 * k]), float(angles[2 * k + 1])
-    d = np.array([math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), math.cos(theta)])
+    d = np.array(
+        [math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), math.cos(theta)]
+    )
     mirror = _light(theta_i, phi_i + 180)
     toward = ""
     if _angle(d, mirror) <= NEAR_DEG and theta_i >= NEAR_DEG:
@@ -200,9 +202,13 @@ def lobe3d(
         toward = ", the normal"
     phi_deg = int(round(math.degrees(phi))) % 360
     normal = v[0] if math.isfinite(v[0]) else 0.0  # the grid's first row is θo = 0
-    return head + spiked + (
-        f"peak of {what} {fmt(v[k])} {UNIT} toward θo {deg(math.degrees(theta))}, "
-        f"φo {phi_deg}°{toward}; at the normal {fmt(max(normal, 0.0))}."
+    return (
+        head
+        + spiked
+        + (
+            f"peak of {what} {fmt(v[k])} {UNIT} toward θo {deg(math.degrees(theta))}, "
+            f"φo {phi_deg}°{toward}; at the normal {fmt(max(normal, 0.0))}."
+        )
     )
 
 

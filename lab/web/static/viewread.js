@@ -4,7 +4,6 @@
 // aria-describedby; a screen reader says it after the canvas's name. Attaches by DOM and the
 // views' read(); the views know nothing of it.
 import { albedo, imageSlice, lobe3d, picture, sh, sphere, terms } from "./describe_views.js";
-import { hasTerms } from "./views/terms.js";
 
 const SETTLE_MS = 700; // after the scheduler's full-quality pass (200 ms after the hand stops)
 let uid = 0;
@@ -19,12 +18,13 @@ function words(lab, panel, name, view) {
   if (name === "slice") return view.data ? imageSlice(label, view.read(), s.phi_d, C.LUMA, C.GRAZING_DEG) : "";
   if (name === "object") return view.data ? picture(label, "lit object", view.read(), C.LUMA) : "";
   if (name === "ibl") {
-    if (!view.samples) return "";
+    if (!view.samples) return `image-based lighting of ${label}: no samples yet (the estimate runs while the view is in sight).`;
     return `${picture(label, "image-based lighting", view.read(), C.LUMA)} ${view.samples} samples per pixel so far.`;
   }
   if (name === "terms") {
-    if (!hasTerms(panel.model)) return `${label}: no D, G, F terms (the model does not define MICROFACET_TERMS).`;
-    return view.terms ? terms(label, view.terms, C.LUMA, C.GRAZING_DEG) : "";
+    if (view.terms) return terms(label, view.terms, C.LUMA, C.GRAZING_DEG);
+    const note = view.root?.querySelector(".view-note")?.textContent; // why there are none
+    return note ? `No D, G, F terms: ${note}` : "";
   }
   if (name === "sh") {
     if (panel.model?.delta) return `${label}: no spherical harmonics for a δ model.`;
