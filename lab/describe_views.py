@@ -42,6 +42,12 @@ def _luminance(rgba: np.ndarray) -> np.ndarray:
     return rgba[..., 0] * LUMA[0] + rgba[..., 1] * LUMA[1] + rgba[..., 2] * LUMA[2]
 
 
+def _drawn(rgba: np.ndarray) -> np.ndarray:
+    """The pixels drawn: alpha > 0 (every pixel of an RGB image)."""
+    rgba = np.asarray(rgba)
+    return rgba[..., 3] > 0 if rgba.shape[-1] > 3 else np.ones(rgba.shape[:2], bool)
+
+
 def _nonfinite(count: int) -> str:
     return f" {count} pixels are not finite (NaN or ∞)." if count else ""
 
@@ -51,7 +57,7 @@ def sphere(name: str, rgba: np.ndarray, theta_i: float, phi_i: float) -> str:
     point, how far that point's normal is from the halfway vector and from the light, and the
     share of the disc that is lit."""
     lum = _luminance(rgba)
-    disc = np.asarray(rgba)[..., 3] > 0
+    disc = _drawn(rgba)
     height, width = lum.shape
     ok = disc & np.isfinite(lum)
     head = f"{name} on a sphere, light at θi {deg(theta_i)}, φi {deg(phi_i)}: "
@@ -89,7 +95,7 @@ def picture(name: str, what: str, rgba: np.ndarray) -> str:
     """A rendered picture (the lit object, the IBL sphere): its brightest point and where
     it is, the mean over the pixels drawn (alpha > 0) and the share of them lit."""
     lum = _luminance(rgba)
-    drawn = np.asarray(rgba)[..., 3] > 0
+    drawn = _drawn(rgba)
     ok = drawn & np.isfinite(lum)
     bad = _nonfinite(int((drawn & ~np.isfinite(lum)).sum()))
     head = f"{what} of {name}: "
