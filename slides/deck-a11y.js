@@ -245,6 +245,14 @@ window.deckA11y = (() => {
       record.made = [...record.made, ...made];
       pages.push(record);
     }
+    // A page still taller than the slide (text longer than a page) scrolls; the others do not,
+    // whatever an equation draws a few px below its line.
+    const leaves = document.querySelectorAll(".reveal .slides > section:not(.stack), .reveal .slides > section > section");
+    for (const leaf of leaves) {
+      leaf.classList.remove("tall");
+      const last = [...leaf.children].filter((c) => c.tagName !== "ASIDE").pop();
+      if (last && bottom(last, leaf, scale) > height + 1) leaf.classList.add("tall");
+    }
     for (const [section, display, hidden] of shown) [section.style.display, section.hidden] = [display, hidden];
     for (const record of pages) for (const page of record.wrapper.children) if (page !== record.first) page.style.display = "";
   }
