@@ -151,7 +151,8 @@ PAGES = """() => Reveal.getSlides().map((s) => {
   const box = document.querySelector(".reveal .slides");
   const scale = box.getBoundingClientRect().width / box.offsetWidth;
   const shown = [...s.children].filter((n) => n.nodeName !== "ASIDE");
-  const bottom = (shown.pop().getBoundingClientRect().bottom - s.getBoundingClientRect().top) / scale;
+  const top = s.getBoundingClientRect().top;
+  const bottom = (shown.pop().getBoundingClientRect().bottom - top) / scale;
   const text = [...s.childNodes].filter((n) => n.nodeName !== "ASIDE").map((n) => n.textContent);
   const scrolls = getComputedStyle(s).overflowY === "auto" && s.scrollHeight > s.clientHeight;
   return [bottom, Reveal.getConfig().height, text.join(" "), scrolls]; })"""
