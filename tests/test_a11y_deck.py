@@ -118,6 +118,11 @@ def test_space_on_a_demo_checkbox_ticks_it_and_stays_on_the_slide(browser, deck)
     )
     frame = page.query_selector(".present iframe.demo").content_frame()
     frame.wait_for_function("window.brdfLabA11y && window.brdfLabA11y.plots")
+    # The demo's sphere says what it shows, as on the lab page (describe_views.js).
+    frame.wait_for_function(
+        "() => /on a sphere, light at θi 30°.*brightest/.test("
+        "document.querySelector('canvas.sphere').dataset.description || '')"
+    )
     frame.focus("#cos-weighted")
     page.keyboard.press("Space")
     page.wait_for_timeout(200)
