@@ -33,13 +33,28 @@ def _lobe_words(view, s) -> list[str]:
     L = np.repeat(direction(s["theta_i"], s["phi_i"])[None], len(V), axis=0)
     words = []
     what = "f_r cos θo" if s["polar_cos"] else "f_r"
+    # A model's words are computed again only when it or the light changes (a probe each).
+    known = view.__dict__.setdefault("words_cache", {})
     for state, (_, spike) in view.data:
-        f = view.renderer.probe(state.model, state.values, L, V).astype(np.float64) @ LUMA
-        if s["polar_cos"]:
-            f = f * np.maximum(V[:, 2], 0.0)
-        words.append(
-            describe_views.lobe3d(state.label, f, angles, s["theta_i"], s["phi_i"], what, spike)
+        key = (
+            state.model.code,
+            str(state.model.path),
+            sorted(state.values.items()),
+            state.label,
+            s["theta_i"],
+            s["phi_i"],
+            s["polar_cos"],
         )
+        hit = known.get(id(state))
+        if hit is None or hit[0] != key:
+            f = view.renderer.probe(state.model, state.values, L, V).astype(np.float64) @ LUMA
+            if s["polar_cos"]:
+                f = f * np.maximum(V[:, 2], 0.0)
+            text = describe_views.lobe3d(
+                state.label, f, angles, s["theta_i"], s["phi_i"], what, spike
+            )
+            known[id(state)] = hit = (key, text)
+        words.append(hit[1])
     return words
 
 
