@@ -1,7 +1,9 @@
 // Owns: the views other than the polar plot in words (lit sphere, lit object, IBL picture,
 // albedo, image slice, 3D lobe, D/G/F terms, spherical harmonics), for readers who cannot see
 // them. The mirror of lab/describe_views.py; tests/test_a11y_views.py holds both to one
-// fixture. Images: { width, height, data } (float RGBA, row 0 at the top).
+// fixture. Why in JavaScript too: the page works alone (a file opened, a slide's demo) and
+// describes the numbers its own views computed, as the desktop app says them.
+// Images: { width, height, data } (float RGBA, row 0 at the top).
 import { UNIT, deg, fmt, pyRound } from "./describe.js";
 
 const NEAR_DEG = 2;
