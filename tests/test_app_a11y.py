@@ -163,3 +163,20 @@ def test_every_plot_widget_describes_what_it_shows(qtbot, window):
     window.lab.settings.set("theta_i", 60.0)
     settle(qtbot, window)
     assert "toward θo 60°" in views["lobe3d"].canvas.accessibleDescription()
+
+
+def test_the_ibl_picture_is_described_once_it_stops(qtbot, window):
+    """While it refines the IBL view says so; once stopped, each strategy's picture in
+    describe_views' words and the samples it took."""
+    from lab.models import load_model
+    from tests.qtapp import floating_view
+
+    window.lab.add(load_model("ggx"), {"alpha": 0.2})
+    window.lab.settings.set("ibl_samples", 16)
+    view = floating_view(qtbot, window, "ibl", (900, 420))
+    window.settle()
+    qtbot.waitUntil(lambda: view.stopped is not None, timeout=60000)
+    said = view.canvas.accessibleDescription()
+    run = view.runs[0]
+    assert said.startswith(f"image-based lighting ({run.strategy}) of {view.lab.selected.label}:")
+    assert f"{run.samples} samples per pixel." in said and said.endswith(f"{view.stopped}.")

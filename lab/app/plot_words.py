@@ -102,7 +102,28 @@ def view_words(view) -> tuple[str, list[QWidget]]:
         return describe_views.sh(state.label, view.data.errors, view.order), _plots(view)
     if name == "lobe3d":
         return " ".join(_lobe_words(view, s)), [view.canvas]
+    if name == "ibl":
+        return _ibl_words(view), [view.canvas]
     return "", []
+
+
+def _ibl_words(view) -> str:
+    """The IBL estimate: while it refines, how far it is; once it stops, each strategy's
+    picture (read once, not at every pass)."""
+    if not getattr(view, "timer_followed", False):  # described again when a run stops
+        view.timer_followed = True
+        view.timer.timeout.connect(lambda: view.stopped and describe_view(view))
+    state = view.lab.selected
+    if not view.runs or state is None:
+        return view.note or "no model to light"
+    if not view.stopped:
+        return f"image-based lighting of {state.label}: refining ({view.status.text()})."
+    words = [
+        describe_views.picture(state.label, f"image-based lighting ({run.strategy})", run.image())
+        + f" {run.samples} samples per pixel."
+        for run in view.runs
+    ]
+    return " ".join(words) + f" {view.stopped}."
 
 
 def describe_view(view) -> None:
