@@ -192,6 +192,10 @@ def test_at_200_percent_no_slide_scrolls_inside_and_nothing_is_lost(browser):
     assert scrolling == [], scrolling
     assert len(zoomed) > len(plain)  # pages were added
     assert words(zoomed) == words(plain)
+    # The arrow that turns the slides goes through a slide's pages first.
+    page.evaluate("Reveal.slide(1, 0)")
+    page.keyboard.press("ArrowRight")
+    assert page.evaluate("[Reveal.getIndices().h, Reveal.getIndices().v]") == [1, 1]
     # Back to 100 %: the pages fold back into their slides.
     cdp = context.new_cdp_session(page)
     cdp.send(
