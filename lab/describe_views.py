@@ -52,15 +52,24 @@ def _nonfinite(count: int) -> str:
     return f" {count} pixels are not finite (NaN or ∞)." if count else ""
 
 
-def sphere(name: str, rgba: np.ndarray, theta_i: float, phi_i: float) -> str:
+def sphere(
+    name: str,
+    rgba: np.ndarray,
+    theta_i: float,
+    phi_i: float,
+    more: Sequence[tuple[float, float]] = (),
+) -> str:
     """A lit sphere (H x W x 4 floats, row 0 at the top, alpha 0 off the disc): its brightest
     point, how far that point's normal is from the halfway vector and from the light, and the
-    share of the disc that is lit."""
+    share of the disc that is lit. `more`: (θi, φi) of further lights; the angles are then
+    those of the light whose halfway vector is nearest that normal."""
     lum = _luminance(rgba)
     disc = _drawn(rgba)
     height, width = lum.shape
     ok = disc & np.isfinite(lum)
-    head = f"{name} on a sphere, light at θi {deg(theta_i)}, φi {deg(phi_i)}: "
+    lights = [(theta_i, phi_i), *more]
+    where = "light" if not more else f"{len(lights)} lights, light 1"
+    head = f"{name} on a sphere, {where} at θi {deg(theta_i)}, φi {deg(phi_i)}: "
     bad = _nonfinite(int((disc & ~np.isfinite(lum)).sum()))
     values = np.where(ok, lum, -math.inf)
     k = int(np.argmax(values))
@@ -71,13 +80,23 @@ def sphere(name: str, rgba: np.ndarray, theta_i: float, phi_i: float) -> str:
     x = (col + 0.5) / width * 2 - 1
     y = 1 - (row + 0.5) / height * 2
     normal = np.array([x, y, math.sqrt(max(1 - x * x - y * y, 0.0))])
-    light = _light(theta_i, phi_i)
-    half = light + np.array([0.0, 0.0, 1.0])
-    half /= np.linalg.norm(half)
+    best = None  # (angle to the halfway vector, light number, angle to the light)
+    for j, (t, p) in enumerate(lights):
+        light = _light(t, p)
+        half = light + np.array([0.0, 0.0, 1.0])
+        half /= np.linalg.norm(half)
+        if best is None or _angle(normal, half) < best[0]:
+            best = (_angle(normal, half), j + 1, _angle(normal, light))
+    to_half, j, to_light = best
+    which = (
+        ("the halfway vector", "the light")
+        if not more
+        else (f"the halfway vector of light {j}", "that light")
+    )
     lit = int((ok & (lum >= LIT * peak)).sum())
     return (
-        head + f"brightest {fmt(peak)} where the normal is {deg(_angle(normal, half))} from "
-        f"the halfway vector and {deg(_angle(normal, light))} from the light; "
+        head + f"brightest {fmt(peak)} where the normal is {deg(to_half)} from {which[0]} "
+        f"and {deg(to_light)} from {which[1]}; "
         f"{_share(lit, int(disc.sum()))} of the disc lit." + bad
     )
 

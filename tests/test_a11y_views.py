@@ -146,6 +146,7 @@ def test_page_says_the_same_words(tmp_path, renderer):
     sick = sphere.copy()
     sick[30:32, 30:40, 0] = np.nan  # non-finite pixels are counted
     obj = renderer.sphere("ggx", {"alpha": 0.2}, (60.0, 200.0), size=48)
+    two = sphere + renderer.sphere("phong", {}, (60.0, 200.0), size=64) * 2  # light 2 wins
     thetas = np.arange(0.0, 90.0, 2.5)
     angles = grid_angles(24, 36)
     t = microfacet_terms(renderer, "ggx", {"alpha": 0.25}, 30.0)
@@ -153,6 +154,10 @@ def test_page_says_the_same_words(tmp_path, renderer):
         "sphere": [
             (["phong", image_json(sphere), 35.0, 20.0], dv.sphere("phong", sphere, 35.0, 20.0)),
             (["sick", image_json(sick), 35.0, 20.0], dv.sphere("sick", sick, 35.0, 20.0)),
+            (
+                ["two", image_json(two), 35.0, 20.0, [[60.0, 200.0]]],
+                dv.sphere("two", two, 35.0, 20.0, [(60.0, 200.0)]),
+            ),
         ],
         "picture": [(["ggx", "lit object", image_json(obj)], dv.picture("ggx", "lit object", obj))],
         "albedo": [
@@ -205,7 +210,7 @@ const G = {GRAZING_DEG};
 const cases = JSON.parse(readFileSync(process.argv[2], "utf8"));
 const image = (j) => ({{ ...j, data: Float64Array.from(j.data, Number) }});
 const run = {{
-  sphere: ([n, im, t, p]) => d.sphere(n, image(im), t, p, L),
+  sphere: ([n, im, t, p, more]) => d.sphere(n, image(im), t, p, L, more),
   picture: ([n, w, im]) => d.picture(n, w, image(im), L),
   albedo: ([n, t, a]) => d.albedo(n, t, a),
   slice: ([n, im, p]) => d.imageSlice(n, image(im), p, L, G),
@@ -291,3 +296,14 @@ def test_page_views_are_described_by_their_own_numbers(browser):
         timeout=10000,
     )
     page.close()
+
+
+def test_with_several_lights_the_nearest_halfway_vector_is_named(renderer):
+    from lab.render import Light
+
+    lights = [Light(30.0, 0.0), Light(50.0, 180.0)]
+    image = renderer.sphere("phong", {"ke": 60.0}, (30.0, 0.0), size=128, lights=lights)
+    text = dv.sphere("phong", image, 30.0, 0.0, [(50.0, 180.0)])
+    assert text.startswith("phong on a sphere, 2 lights, light 1 at θi 30°, φi 0°: brightest")
+    m = re.search(r"normal is (\d+)° from the halfway vector of light (\d) and (\d+)°", text)
+    assert m and int(m[1]) <= 2 and int(m[3]) == pytest.approx(25 if m[2] == "2" else 15, abs=2)

@@ -45,10 +45,12 @@ function litCount(s, n) {
 
 /** A lit sphere: its brightest point, that point's normal against the halfway vector and the
  * light, the share of the disc lit (describe_views.py: sphere). */
-export function sphere(name, image, thetaI, phiI, luma) {
+export function sphere(name, image, thetaI, phiI, luma, more = []) {
   const { width, height } = image;
   const s = scan(image, luma);
-  const head = `${name} on a sphere, light at θi ${deg(thetaI)}, φi ${deg(phiI)}: `;
+  const lights = [[thetaI, phiI], ...more];
+  const where = more.length ? `${lights.length} lights, light 1` : "light";
+  const head = `${name} on a sphere, ${where} at θi ${deg(thetaI)}, φi ${deg(phiI)}: `;
   const bad = nonfinite(s.bad);
   if (!s.drawn || s.peak <= 0) return `${head}black everywhere.${bad}`;
   const row = Math.floor(s.k / width);
@@ -56,12 +58,17 @@ export function sphere(name, image, thetaI, phiI, luma) {
   const x = ((col + 0.5) / width) * 2 - 1;
   const y = 1 - ((row + 0.5) / height) * 2;
   const normal = [x, y, Math.sqrt(Math.max(1 - x * x - y * y, 0))];
-  const L = light(thetaI, phiI);
-  const h = [L[0], L[1], L[2] + 1];
-  const len = Math.hypot(...h);
-  const half = h.map((c) => c / len);
-  return `${head}brightest ${fmt(s.peak)} where the normal is ${deg(angle(normal, half))} from ` +
-    `the halfway vector and ${deg(angle(normal, L))} from the light; ` +
+  let best = null; // [angle to the halfway vector, light number, angle to the light]
+  lights.forEach(([t, p], j) => {
+    const L = light(t, p);
+    const h = [L[0], L[1], L[2] + 1];
+    const len = Math.hypot(...h);
+    const toHalf = angle(normal, h.map((c) => c / len));
+    if (best === null || toHalf < best[0]) best = [toHalf, j + 1, angle(normal, L)];
+  });
+  const which = more.length ? [`the halfway vector of light ${best[1]}`, "that light"] : ["the halfway vector", "the light"];
+  return `${head}brightest ${fmt(s.peak)} where the normal is ${deg(best[0])} from ${which[0]} ` +
+    `and ${deg(best[2])} from ${which[1]}; ` +
     `${share(litCount(s, width * height), s.drawn)} of the disc lit.${bad}`;
 }
 

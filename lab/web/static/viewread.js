@@ -85,7 +85,8 @@ export function describeViews(lab, drawn = () => {}) {
   for (const panel of lab.panels) {
     if (panel.canvas && panel.model && panel.target) {
       try {
-        say(panel.canvas, sphere(panel.name, panel.readSphere(), light.theta, light.phi, lab.constants.LUMA));
+        const more = lab.lights.slice(1).map((l) => [l.theta, l.phi]);
+        say(panel.canvas, sphere(panel.name, panel.readSphere(), light.theta, light.phi, lab.constants.LUMA, more));
       } catch { /* a panel whose model does not compile has no sphere */ }
     }
     for (const [name, view] of Object.entries(panel.extra || {})) {
