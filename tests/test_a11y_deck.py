@@ -118,6 +118,11 @@ def test_space_on_a_demo_checkbox_ticks_it_and_stays_on_the_slide(browser, deck)
     )
     frame = page.query_selector(".present iframe.demo").content_frame()
     frame.wait_for_function("window.brdfLabA11y && window.brdfLabA11y.plots")
+    # The demo's sphere says what it shows, as on the lab page (describe_views.js).
+    frame.wait_for_function(
+        "() => /on a sphere, light at θi 30°.*brightest/.test("
+        "document.querySelector('canvas.sphere').dataset.description || '')"
+    )
     frame.focus("#cos-weighted")
     page.keyboard.press("Space")
     page.wait_for_timeout(200)
@@ -142,3 +147,63 @@ def test_plot_figures_are_described_in_words(deck):
     assert "cook_torrance, θi 75°: peak of f_r cos θo at θo " in alt
     peak = int(re.search(r"cook_torrance, θi 75°: peak of f_r cos θo at θo (\d+)°", alt)[1])
     assert peak > 75  # the off-specular peak, in words
+
+
+# Every page of the deck as it is now: [bottom of its content, the slide's height, its text
+# (the speaker notes left out: they stay with the slide's first page), whether it scrolls].
+PAGES = """() => Reveal.getSlides().map((s) => {
+  const at = Reveal.getIndices(s); Reveal.slide(at.h, at.v);
+  const box = document.querySelector(".reveal .slides");
+  const scale = box.getBoundingClientRect().width / box.offsetWidth;
+  const shown = [...s.children].filter((n) => n.nodeName !== "ASIDE");
+  const top = s.getBoundingClientRect().top;
+  const bottom = (shown.pop().getBoundingClientRect().bottom - top) / scale;
+  const text = [...s.childNodes].filter((n) => n.nodeName !== "ASIDE").map((n) => n.textContent);
+  const scrolls = getComputedStyle(s).overflowY === "auto" && s.scrollHeight > s.clientHeight;
+  return [bottom, Reveal.getConfig().height, text.join(" "), scrolls]; })"""
+
+
+def words(pages) -> str:
+    """The deck's text in order without white space, the headings that pages repeat left out
+    (a list split over pages loses the white space between its items)."""
+    import re
+
+    text = " ".join(re.sub(r"^\s*[^\n]*\(continued\)", " ", p[2]) for p in pages)
+    return "".join(text.split())
+
+
+def test_at_200_percent_no_slide_scrolls_inside_and_nothing_is_lost(browser):
+    """At 200 % zoom in a 1280x720 window the text is twice as large; what no longer fits on
+    a slide goes on pages below it: no page scrolls inside, the words are the same, in the
+    same order; back at 100 % the deck is as it was."""
+    context, page = open_deck(browser)
+    page.set_viewport_size({"width": 1280, "height": 720})
+    page.wait_for_timeout(200)
+    plain = page.evaluate(PAGES)
+    context.close()
+    context = browser.new_context(viewport={"width": 640, "height": 360}, device_scale_factor=2)
+    context.add_init_script("sessionStorage.setItem('deck-dpr', '1')")
+    page = context.new_page()
+    page.goto(f"{browser.base_url}index.html")
+    page.wait_for_function("window.Reveal && Reveal.isReady()")
+    page.wait_for_timeout(300)
+    zoomed = page.evaluate(PAGES)
+    scrolling = [p[2].strip()[:50] for p in zoomed if p[0] > p[1] + 1 or p[3]]
+    assert scrolling == [], scrolling
+    assert len(zoomed) > len(plain)  # pages were added
+    assert words(zoomed) == words(plain)
+    # The arrow that turns the slides goes through a slide's pages first.
+    page.evaluate("Reveal.slide(1, 0)")
+    page.keyboard.press("ArrowRight")
+    assert page.evaluate("[Reveal.getIndices().h, Reveal.getIndices().v]") == [1, 1]
+    # Back to 100 %: the pages fold back into their slides.
+    cdp = context.new_cdp_session(page)
+    cdp.send(
+        "Emulation.setDeviceMetricsOverride",
+        {"width": 1280, "height": 720, "deviceScaleFactor": 1, "mobile": False},
+    )
+    page.wait_for_function("Reveal.getConfig().width === 1280")
+    page.wait_for_timeout(200)
+    again = page.evaluate(PAGES)
+    assert [p[2] for p in again] == [p[2] for p in plain]
+    context.close()

@@ -117,3 +117,66 @@ def test_a_rejected_value_is_said_at_its_field(qtbot, window):
     said = row.text.accessibleDescription()
     assert "rejected" in said and "ke" in said
     assert window.statusBar().currentMessage() == said
+
+
+def test_every_plot_widget_describes_what_it_shows(qtbot, window):
+    """Each view's plot widget has lab/describe_views.py's words for the numbers it drew as
+    its accessible description (the web page says the same words: tests/test_a11y_views.py);
+    they follow the light."""
+    from lab import describe_views as dv
+    from lab.models import load_model
+    from tests.qtapp import floating_view
+
+    window.lab.add(load_model("phong"), {"ke": 40.0})
+    window.lab.settings.set("theta_i", 40.0)
+    settle(qtbot, window)
+    for name in ("sphere", "albedo", "slice", "lobe3d", "terms", "sh", "object"):
+        floating_view(qtbot, window, name)
+    settle(qtbot, window)
+    views = {v.name: v for v in window.views}
+    state = window.lab.visible_models()[0]
+    sphere = views["sphere"]
+    ((_, image),) = sphere.floats
+    assert sphere.canvas.accessibleDescription() == dv.sphere(state.label, image, 40.0, 0.0)
+    assert "0° from the halfway vector" in sphere.canvas.accessibleDescription() or (
+        "1° from the halfway vector" in sphere.canvas.accessibleDescription()
+    )
+    albedo = views["albedo"]
+    ((_, thetas, values),) = albedo.data
+    assert albedo.plot.accessibleDescription() == dv.albedo(state.label, thetas, values)
+    said = {
+        n: w.accessibleDescription()
+        for n, w in (
+            ("slice", views["slice"].canvas),
+            ("lobe3d", views["lobe3d"].canvas),
+            ("terms", views["terms"]),
+            ("sh", views["sh"]),
+            ("object", views["object"].canvas),
+        )
+    }
+    assert said["slice"].startswith(f"{state.label}, image slice at φd 90°: f_r from")
+    assert "toward θo 40°, φo 180°, the mirror direction" in said["lobe3d"]
+    assert said["lobe3d"].endswith("Arrows turn it, plus and minus zoom.")
+    assert "MICROFACET_TERMS" in said["terms"]  # Phong has no D, G, F: it says why
+    assert said["sh"].startswith(f"{state.label}: spherical harmonics to order")
+    assert said["object"].startswith(f"lit object of {state.label}: brightest")
+    window.lab.settings.set("theta_i", 60.0)
+    settle(qtbot, window)
+    assert "toward θo 60°" in views["lobe3d"].canvas.accessibleDescription()
+
+
+def test_the_ibl_picture_is_described_once_it_stops(qtbot, window):
+    """While it refines the IBL view says so; once stopped, each strategy's picture in
+    describe_views' words and the samples it took."""
+    from lab.models import load_model
+    from tests.qtapp import floating_view
+
+    window.lab.add(load_model("ggx"), {"alpha": 0.2})
+    window.lab.settings.set("ibl_samples", 16)
+    view = floating_view(qtbot, window, "ibl", (900, 420))
+    window.settle()
+    qtbot.waitUntil(lambda: view.stopped is not None, timeout=60000)
+    said = view.canvas.accessibleDescription()
+    run = view.runs[0]
+    assert said.startswith(f"image-based lighting ({run.strategy}) of {view.lab.selected.label}:")
+    assert f"{run.samples} samples per pixel." in said and said.endswith(f"{view.stopped}.")

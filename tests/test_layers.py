@@ -24,6 +24,7 @@ LAYERS = {  # module -> layer; a feature package's modules default to the top la
     "lab.bootstrap": 0,
     "lab.plotscale": 0,
     "lab.describe": 0,
+    "lab.describe_views": 0,
     "lab.nonfinite": 0,
     "lab.measured": 0,
     "lab.measured.sh": 0,

@@ -3,7 +3,8 @@
 Most controls are named where they are made (widgets.py, model_list.py); this names what Qt
 makes on its own (dock tab bars, a scroll area's viewport, a spin box's line edit) and the
 plot widgets (by their view's title), once at start and for each widget as it gets focus;
-and gives the 3D pictures keys to turn them (OrbitKeys).
+and gives the 3D pictures keys to turn them (OrbitKeys). What each plot shows, in words, is
+lab/app/plot_words.py's.
 """
 
 from __future__ import annotations
@@ -71,7 +72,8 @@ class OrbitKeys(QObject):
         super().__init__(widget)
         self.settings, self.yaw, self.pitch, self.zoom = settings, yaw, pitch, zoom
         widget.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
-        keys = "arrows turn it" + (", plus and minus zoom" if zoom else "")
+        keys = "Arrows turn it" + (", plus and minus zoom." if zoom else ".")
+        widget.setProperty("keys_hint", keys)  # describe_view keeps it after the words
         widget.setAccessibleDescription(keys)
         widget.installEventFilter(self)
 

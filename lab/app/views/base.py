@@ -139,6 +139,10 @@ class View(QWidget):
         self.coarse = bool(self.draw(fast))
         self.drawn = inputs
         self.draws += 1
+        if not self.coarse:  # at full quality: say what it shows (screen readers)
+            from lab.app.plot_words import describe_view
+
+            describe_view(self)
         return self.coarse
 
     def invalidate(self) -> None:

@@ -5,6 +5,7 @@
 // keyboard orbit and zoom, lists that open on Enter. It attaches by ids, classes and events
 // to what lab.js builds (a MutationObserver follows the panels), so lab.js stays unaware.
 import { readPlots, setting, settingName } from "./plotread.js";
+import { readViews } from "./viewread.js";
 
 const PROGRESS_MS = 5000;
 let uid = 0;
@@ -309,6 +310,7 @@ function setUp() {
   focusTips();
   update();
   speakAll();
+  window.brdfLabA11y.views = readViews(lab);
   // The plots wait for the constants (luminance weights, grazing cut-off) from the manifest.
   fetch("manifest.json").then((r) => r.json()).then((m) => {
     window.brdfLabA11y.plots = readPlots(lab, m.constants, el);
@@ -317,6 +319,7 @@ function setUp() {
     update();
     speakAll();
     window.brdfLabA11y.plots?.refresh();
+    window.brdfLabA11y.views.refresh();
   };
 }
 

@@ -20,7 +20,7 @@ export function fmt(x) {
 }
 
 /** Rounds halves to even, as Python's round() does. */
-function pyRound(x) {
+export function pyRound(x) {
   const value = Math.round(x);
   return Math.abs(x % 1) === 0.5 && value % 2 !== 0 ? value - 1 : value;
 }
