@@ -184,7 +184,8 @@ def run(
     """Loads the page with `views` (default: every view) and the floor page in turn, each
     in a new tab left idle for TAB_IDLE_MS: the first picture, every view in the window
     drawn and every view at full quality (performance.now() since navigation start), then
-    the frame times while a slider moves through `steps` positions, on every load. With
+    the frame times while a slider moves through `steps` positions on both pages, in
+    turns of SLIDER_TURN frames, on every load. With
     `compare` (a site written by `brdf-lab web-export`), its page loads after each of this
     build's."""
     from lab.web.browser import chromium
@@ -209,7 +210,7 @@ def run(
         browser = stack.enter_context(chromium())
         floor_address = url + address.removesuffix(shown)
 
-        def load_views() -> None:
+        def load_views():
             page = _load(
                 browser,
                 url + address,
@@ -219,37 +220,53 @@ def run(
             )
             result.offscreen = tuple(page.evaluate(OFFSCREEN_JS))
             result.renderer = page.evaluate(RENDERER_JS)
-            # Slider frames on every load, pooled: the two pages' frames then share the
-            # machine's ups and downs as their loads do.
-            result.frame_ms += _slider(page, param, steps)
-            page.close()
             if other is not None:
                 _load(browser, other + address, their_first, their_full, []).close()
+            return page
 
-        def load_floor() -> None:
-            floor = _load(browser, floor_address, result.floor_ms, [], [])
-            result.floor_frame_ms += _slider(floor, param, steps)
-            floor.close()
+        def load_floor():
+            return _load(browser, floor_address, result.floor_ms, [], [])
 
         for k in range(max(1, loads)):
             # In turn, the other way round every other time: neither page is always the one
             # loaded after the other.
             if not views:
-                load_views()
+                pages = [load_views()]
             elif k % 2 == 0:
-                load_views()
-                load_floor()
+                pages = [load_views(), load_floor()]
             else:
-                load_floor()
-                load_views()
+                pages = [load_floor(), load_views()][::-1]
+            # Slider frames on every load, the two pages' in short turns: both then share
+            # the machine's ups and downs (a few seconds of another process's work would
+            # otherwise fall on one page's frames).
+            frames = _slider_in_turn(pages, param, steps)
+            result.frame_ms += frames[0]
+            if len(frames) > 1:
+                result.floor_frame_ms += frames[1]
+            for page in pages:
+                page.close()
     if compare is not None:
         result.compared = (str(compare), their_first, their_full)
     return result
 
 
-def _slider(page, param: str, steps: int) -> list[float]:
-    page.evaluate(f"brdfLab.sliderFrames(0, '{param}', 10)")  # warm up
-    return page.evaluate(f"brdfLab.sliderFrames(0, '{param}', {steps})")
+SLIDER_TURN = 20  # slider frames of one page before the other page's turn
+
+
+def _slider_in_turn(pages: list, param: str, steps: int) -> list[list[float]]:
+    """Each page's slider frame times, `steps` in all per page, taken in turns of
+    SLIDER_TURN frames (first page first, then the other way round)."""
+    for page in pages:
+        page.evaluate(f"brdfLab.sliderFrames(0, '{param}', 10)")  # warm up
+    frames: list[list[float]] = [[] for _ in pages]
+    turn = 0
+    while len(frames[0]) < steps:
+        n = min(SLIDER_TURN, steps - len(frames[0]))
+        order = range(len(pages)) if turn % 2 == 0 else reversed(range(len(pages)))
+        for i in order:
+            frames[i] += pages[i].evaluate(f"brdfLab.sliderFrames(0, '{param}', {n})")
+        turn += 1
+    return frames
 
 
 def _load(browser, address: str, first: list[float], full: list[float], shown: list[float]):
