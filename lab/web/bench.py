@@ -200,12 +200,12 @@ def run(
     compare: Path | None = None,
 ) -> WebBench:
     """Loads the page with `views` (default: every view) and the floor page in turn (after
-    one untimed load of each), each in a new tab left idle for TAB_IDLE_MS: the first picture, every view in the window
-    drawn and every view at full quality (performance.now() since navigation start), then
-    the frame times while a slider moves through `steps` positions on both pages, in
-    turns of SLIDER_TURN frames, on every load. With
-    `compare` (a site written by `brdf-lab web-export`), its page loads after each of this
-    build's."""
+    one untimed load of each), each in a new tab left idle for TAB_IDLE_MS: the first
+    picture, every view in the window drawn and every view at full quality
+    (performance.now() since navigation start), then the frame times while a slider moves
+    through `steps` positions on both pages, in turns of SLIDER_TURN frames, on every load.
+    With `compare` (a site written by `brdf-lab web-export`), its page loads after each of
+    this build's."""
     from lab.web.browser import chromium
     from lab.web.site import export, serving
 
