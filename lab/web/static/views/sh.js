@@ -173,10 +173,18 @@ export class SHView {
     ctx.fillStyle = this.panel.color;
     ctx.fillText("original (GLSL)", left + 4, top + 1.1 * px);
     if (!series) {
+      const wait = "series and error follow when the slider stops";
       ctx.fillStyle = "#bbb";
-      ctx.fillText("series and error follow", split + 4, top + 1.1 * px);
-      ctx.fillText("when the slider stops", split + 4, top + 2.2 * px);
-      setText(this.note, "series and error follow when the slider stops");
+      let line = "";
+      let at = top + 1.1 * px;
+      for (const word of wait.split(" ")) { // wrapped to the right part's width
+        if (line && ctx.measureText(`${line} ${word}`).width > canvas.width - split - 8) {
+          ctx.fillText(line, split + 4, at);
+          [line, at] = [word, at + 1.1 * px];
+        } else line = line ? `${line} ${word}` : word;
+      }
+      ctx.fillText(line, split + 4, at);
+      setText(this.note, wait);
       return;
     }
     curve(series, SERIES, [6, 4]);
