@@ -41,7 +41,8 @@ export class SHView {
   /** Queues the probe of the lobe on the quadrature grid, unless the series is cached. While
    * the hand moves (lab.fast) the projection waits, as on the desktop: the lobe in the plane
    * follows the slider, the series and its errors come when it stops (the probe and the
-   * projection are most of this view's frame, and more than the sphere's). */
+   * projection are most of this view's frame, and more than the sphere's). A model's first
+   * series never waits (the page's first, coarse draw of its views shows it). */
   submit() {
     const lab = this.lab;
     if (Number(this.order.value) !== lab.settings.sh_order) this.order.value = lab.settings.sh_order;
@@ -49,7 +50,7 @@ export class SHView {
     this.pass = null;
     this.key = JSON.stringify([this.panel.values, light.theta, light.phi]);
     if (this.panel.model.delta || (this.cache?.model === this.panel.model && this.cache.key === this.key)) return;
-    if (lab.fast) return;
+    if (lab.fast && this.cache?.model === this.panel.model) return;
     const { V, n } = quadrature();
     const [nTheta, nPhi] = grid();
     const Ld = direction(light.theta, light.phi);
