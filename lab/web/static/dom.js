@@ -42,6 +42,13 @@ export function setText(node, text) {
 
 const widths = new WeakMap(); // canvas -> its CSS width, kept by `resized`
 let resized = null;
+let redraw = () => {}; // onCanvasResize
+
+/** Calls `callback` when a canvas whose width cssWidth keeps changes size (drawn since at
+ * the old width: the page draws again with the new one). */
+export function onCanvasResize(callback) {
+  redraw = callback;
+}
 
 /** A canvas's CSS width (0 while hidden), read once and then kept by a ResizeObserver: a
  * read of clientWidth while a frame draws forces a layout of the page (most of a slider
@@ -49,7 +56,13 @@ let resized = null;
 export function cssWidth(canvas) {
   if (!widths.has(canvas)) {
     resized ??= new ResizeObserver((entries) => {
-      for (const entry of entries) widths.set(entry.target, entry.target.clientWidth); // laid out now
+      let changed = false;
+      for (const entry of entries) {
+        const width = entry.target.clientWidth; // laid out now: no layout forced
+        changed ||= width !== widths.get(entry.target);
+        widths.set(entry.target, width);
+      }
+      if (changed) redraw();
     });
     resized.observe(canvas);
     widths.set(canvas, canvas.clientWidth);
