@@ -129,26 +129,36 @@ def test_the_pages_shape_says_what_the_graders_says(tmp_path):
         "factor": expected * 4.0,
         "cosine": expected * np.cos(np.radians(angles[:, 0]))[:, None],
         "negative": expected - 3.0,
+        "not finite": np.where(np.arange(len(expected))[:, None] % 5 == 0, np.nan, expected),
+        "1/π": expected / np.pi,
+        "odd factor": expected * 1.37,
+        "scaled cosine": expected * 1.5 * np.cos(np.radians(angles[:, 0]))[:, None],
     }
     python = {k: diagnosis.shape(check, angles, expected, v) for k, v in cases.items()}
+    # The terms' sentence, with one, two and three names (', ' and ' and ' as the grader's).
+    terms = [(["D"], [], ""), (["D", "G"], ["diffuse"], "x"), (["D", "G", "F"], ["a", "b"], "")]
+    python["terms"] = [diagnosis.terms_sentence(*t) for t in terms]
     data = {
         "check": {"atol": check.atol, "rtol": check.rtol},
         "angles": angles.tolist(),
         "expected": expected.tolist(),
-        "cases": {k: v.tolist() for k, v in cases.items()},
+        "cases": {k: np.nan_to_num(v, nan=-7e300).tolist() for k, v in cases.items()},
+        "terms": terms,
         "rules": diagnosis_rules(),  # the words and thresholds, as exercises.json sends them
     }
     (tmp_path / "data.json").write_text(json.dumps(data))
     module = (Path(__file__).resolve().parent.parent / "lab/web/static/diagnosis.js").as_uri()
     script = tmp_path / "shape.mjs"
     script.write_text(
-        f'import {{ shape, useRules }} from "{module}";\n'
+        f'import {{ shape, termsSentence, useRules }} from "{module}";\n'
         'import { readFileSync } from "node:fs";\n'
         f'const d = JSON.parse(readFileSync("{tmp_path / "data.json"}", "utf8"));\n'
         "useRules(d.rules);\n"
         "const out = {};\n"
         "for (const [k, got] of Object.entries(d.cases)) "
-        "out[k] = shape(d.check, d.angles, d.expected, got);\n"
+        "out[k] = shape(d.check, d.angles, d.expected, "
+        "got.map((r) => r.map((x) => (x === -7e300 ? NaN : x))));\n"
+        "out.terms = d.terms.map((t) => termsSentence(...t));\n"
         "console.log(JSON.stringify(out));\n"
     )
     run = subprocess.run(["node", str(script)], capture_output=True, text=True, check=True)

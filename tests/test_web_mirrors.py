@@ -179,6 +179,7 @@ def javascript():
         "peak": [(THETA_O, lobe, GRAZING_DEG) for lobe in LOBES],
         "radius": [(f, top, log, PLOT_DECADES) for f, top, log in RADII],
         "g": [(x, d) for x in G_NUMBERS for d in (2, 3, 6)],
+        "fill": fill_cases(),
     }
     python = {
         "values": [python_value(p, t) for p in PARAMS for t in TEXTS],
@@ -292,6 +293,56 @@ def test_number_formatting_is_pythons_g(javascript):
     cases = [(x, d) for x in G_NUMBERS for d in (2, 3, 6)]
     for (x, digits), got in zip(cases, js["g"], strict=True):
         assert got == format(x, f".{digits}g"), (x, digits)
+
+
+# Numbers the sentences' templates are filled with: exact ties (Python rounds them to the
+# even digit), near-ties, negatives, negative zero, tiny and huge, not finite.
+FILL_NUMBERS = [0.5, 1.5, 2.5, -2.5, 0.125, 0.375, 1.005, -0.04, -0.0, 99.95, 1e-7, 7.0, 3e22]
+FILL_NUMBERS += [123.456, 0.0049999, math.inf, -math.inf, math.nan, 2 / 3, 1e5 + 0.5]
+
+
+def fill_cases() -> list:
+    """Every sentence of lab/grading/words.py with numbers in its number fields and words
+    in the others, and a template of each spec the page knows over FILL_NUMBERS."""
+    from string import Formatter
+
+    from lab.grading import words
+
+    cases = []
+    templates = [*words.DIAGNOSIS.values(), *words.SAMPLING.values()]
+    for k, template in enumerate(templates):
+        fields = [(name, spec) for _, name, spec, _ in Formatter().parse(template) if name]
+        numbers = FILL_NUMBERS[k % 7 :] + FILL_NUMBERS
+        values = {
+            name: numbers[i] if spec else ("θ 10°" if i % 2 else 17)
+            for i, (name, spec) in enumerate(fields)
+        }
+        cases.append((template, values))
+    specs = "{x:.0f}|{x:.1f}|{x:.2f}|{x:+.1f}|{x:.4f}|{x:g}|{x:.3g}|{x:.2g}"
+    cases += [(specs, {"x": x}) for x in FILL_NUMBERS if x not in (0.125, 0.375)]
+    cases += [("{x:.0f}|{x:.1f}|{x:.2f}", {"x": x}) for x in (0.125, 0.375)]
+    # JSON has no NaN or infinity: those travel as {"float": "nan"} (check_mirrors.mjs).
+    return [(t, {k: jsonable_number(v) for k, v in values.items()}) for t, values in cases]
+
+
+def jsonable_number(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return {"float": str(value)}
+    return value
+
+
+def python_number(value):
+    return float(value["float"]) if isinstance(value, dict) else value
+
+
+def test_sentences_are_filled_as_python_formats_them(javascript):
+    """header.js fill() (the diagnosis' and sampling checks' sentences in practice mode)
+    writes what Python's str.format writes for every template of lab/grading/words.py."""
+    cases, _, js = javascript
+    assert len(cases["fill"]) > 60
+    for (template, values), got in zip(cases["fill"], js["fill"], strict=True):
+        values = {k: python_number(v) for k, v in values.items()}
+        assert got == template.format(**values), (template, values)
 
 
 def test_plot_scale_matches_python(javascript):

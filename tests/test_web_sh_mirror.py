@@ -15,11 +15,12 @@ import numpy as np
 import pytest
 
 from lab.measured import sh
+from lab.views import sh as sh_view
 
 ROOT = Path(__file__).resolve().parent.parent
 CHECKER = ROOT / "lab" / "web" / "check_sh.mjs"
-GRID = (48, 96)  # lab/app/views/sh.py's GRID, sh.js's GRID
-ORDER = 16
+GRID = sh_view.GRID  # the app's and, as the view's page data, the page's
+ORDER = sh_view.MAX_ORDER
 
 
 def lobes(grid: sh.Grid) -> dict[str, np.ndarray]:
@@ -50,7 +51,11 @@ def mirrored(tmp_path_factory):
         (float(t), float(p)) for t, p in rng.uniform([0, -math.pi], [math.pi, math.pi], (20, 2))
     ]
     table = lobes(grid)
-    cases = {"directions": directions, "lobes": [v.tolist() for v in table.values()]}
+    cases = {
+        "directions": directions,
+        "lobes": [v.tolist() for v in table.values()],
+        "shape": json.loads(json.dumps(sh_view.VIEW.page_data)),  # as the manifest sends it
+    }
     path = tmp_path_factory.mktemp("sh") / "cases.json"
     path.write_text(json.dumps(cases), encoding="utf-8")
     run = subprocess.run(

@@ -14,6 +14,8 @@ import math
 import numpy as np
 
 from lab.grading.exercise import Check
+from lab.grading.words import DIAGNOSIS as WORDS
+from lab.grading.words import joined
 
 # Named factors, as a student would write them, and what their presence usually means.
 CONSTANTS = (
@@ -81,15 +83,14 @@ def _ratio_phrase(value: float) -> str:
     """'every value is π times too large' / '... 4 times too small' / '1.37 times ...'."""
     named = _factor_name(value)
     if named and value > 1.0:
-        return f"every value is {named[0]} times too large — {named[1]}"
+        return WORDS["named_large"].format(name=named[0], cause=named[1])
     inverse = _factor_name(1.0 / value)
     if inverse and value < 1.0:
-        return f"every value is {inverse[0]} times too small — {named[1] if named else ''}".rstrip(
-            " —"
-        )
-    word = "large" if value > 1.0 else "small"
-    times = value if value > 1.0 else 1.0 / value
-    return f"every value is {times:.3g} times too {word}: a constant factor is off"
+        cause = named[1] if named else ""
+        return WORDS["named_small"].format(name=inverse[0], cause=cause).rstrip(" —")
+    if value > 1.0:
+        return WORDS["large"].format(times=value)
+    return WORDS["small"].format(times=1.0 / value)
 
 
 def cosines(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -104,37 +105,21 @@ def shape(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarra
     if not wrong.any():
         return ""
     if not np.isfinite(got).all():
-        return (
-            "some values are NaN or infinite — a division by zero or the pow/sqrt of a "
-            "negative number; guard them with max(..., EPS)"
-        )
+        return WORDS["not_finite"]
     negative = (got < 0.0).any(axis=-1)
     if negative.any():
-        where = "where the solution is 0" if (expected[negative] <= 0.0).all() else "in places"
-        return (
-            f"{int(negative.sum())} values are negative {where} — a dot product is not "
-            "clamped (max(..., 0.0)) or the below-the-surface test is missing"
-        )
+        at_zero = (expected[negative] <= 0.0).all()
+        where = WORDS["negative_at_zero" if at_zero else "negative_in_places"]
+        return WORDS["negative"].format(count=int(negative.sum()), where=where)
     zero = (expected <= 0.0).all(axis=-1)
     if zero[wrong].all():
         below = np.maximum(angles[:, 0], angles[:, 2]) >= 90.0
-        if below[wrong].all():
-            return (
-                "the values are wrong only where the solution is 0 (light or view below the "
-                "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0"
-            )
-        return (
-            "the values are wrong only where the solution is 0, with light and view above "
-            "the surface — a dot product that the solution clamps (max(..., 0.0)) is not"
-        )
+        return WORDS["wrong_below" if below[wrong].all() else "wrong_above"]
     nothing = (np.abs(got) <= check.atol).all(axis=-1)
     if nothing[wrong].all() and not zero[wrong].any():
         # Not "grey where the solution is coloured": zero is no colour at all.
-        where = "everywhere" if nothing.all() else "wherever it is wrong"
-        return (
-            f"it is 0 {where} while the solution's is not — a part is missing, or never "
-            "added to what is returned"
-        )
+        where = WORDS["zero_everywhere" if nothing.all() else "zero_where_wrong"]
+        return WORDS["zero"].format(where=where)
     for phrase in (
         _ratio(check, angles, expected, got),
         _one_channel(check, expected, got, wrong),
@@ -158,20 +143,21 @@ def _ratio(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarr
         return _ratio_phrase(med)
     cos_i, cos_o = cosines(angles[rows])
     factors = (
-        (cos_i, "an extra factor cos θi (N·L) — the renderer multiplies by N·L itself"),
-        (cos_o, "an extra factor cos θo (N·V)"),
-        (1.0 / cos_i, "divided by cos θi (N·L) once too often"),
-        (1.0 / cos_o, "divided by cos θo (N·V) once too often"),
-        (np.sqrt(cos_i * cos_o), "an extra factor √(cos θi cos θo)"),
-        (1.0 / np.sqrt(cos_i * cos_o), "divided by √(cos θi cos θo) once too often"),
+        (cos_i, "factor_cos_i"),
+        (cos_o, "factor_cos_o"),
+        (1.0 / cos_i, "factor_over_cos_i"),
+        (1.0 / cos_o, "factor_over_cos_o"),
+        (np.sqrt(cos_i * cos_o), "factor_sqrt"),
+        (1.0 / np.sqrt(cos_i * cos_o), "factor_over_sqrt"),
     )
-    for factor, words in factors:
+    for factor, key in factors:
         if np.std(factor) < 0.05:
             continue
         med, spread = _spread((ratio / factor[:, None]).ravel())
         if spread < 0.01:
-            scale = "" if abs(med - 1.0) < 0.02 else f" (and a constant factor {med:.3g})"
-            return f"the values are off by {words}{scale}"
+            if abs(med - 1.0) < 0.02:
+                return WORDS["off_by"].format(factor=WORDS[key])
+            return WORDS["off_by_scaled"].format(factor=WORDS[key], scale=med)
     return ""
 
 
@@ -181,13 +167,10 @@ def _one_channel(check: Check, expected: np.ndarray, got: np.ndarray, wrong: np.
     coloured = np.ptp(expected, axis=-1) > 0.05 * np.max(expected, axis=-1) + check.atol
     grey = np.ptp(got, axis=-1) <= 1e-6 * (1.0 + np.max(np.abs(got), axis=-1))
     if coloured[wrong].any() and grey[wrong & coloured].all() and grey.mean() > 0.9:
-        return (
-            "the result is grey where the solution is coloured — a float is used where a "
-            "colour (vec3) belongs, e.g. one channel of a colour parameter"
-        )
+        return WORDS["grey"]
     channels = per_channel.any(axis=0)
     if channels.sum() == 1:
-        return f"only the {CHANNELS[int(np.argmax(channels))]} channel is wrong"
+        return WORDS["one_channel"].format(channel=CHANNELS[int(np.argmax(channels))])
     return ""
 
 
@@ -196,10 +179,7 @@ def _grazing(angles: np.ndarray, wrong: np.ndarray, zero: np.ndarray) -> str:
     steep = np.maximum(angles[:, 0], angles[:, 2]) > GRAZING
     elsewhere = ~steep & ~zero
     if elsewhere.sum() >= 8 and not wrong[elsewhere].any() and wrong[steep].any():
-        return (
-            f"the values are right except near grazing (θ above {GRAZING:g}°) — check "
-            "the terms that matter there: Fresnel, G and the N·L·N·V denominator"
-        )
+        return WORDS["grazing"].format(grazing=GRAZING)
     return ""
 
 
@@ -235,23 +215,21 @@ def lobe(
         peak = fit_peak(table, e_width, g_width, g_peak)
         if peak:
             what, value, actual, _ = peak
-            return (
-                f"the lobe peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}°, as it does "
-                f"with {what} of about {float(f'{value:.2g}'):g} instead of {actual:g}"
+            return WORDS["peak_fit"].format(
+                got=g_peak, want=e_peak, what=what, value=float(f"{value:.2g}"), actual=actual
             )
-        return (
-            f"the lobe peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}° — check the "
-            "reflected direction (or the half vector) and which vectors enter it"
-        )
+        return WORDS["peak"].format(got=g_peak, want=e_peak)
     if not wider:
         return ""
-    words = "too wide" if g_width > e_width else "too narrow"
-    text = f"the lobe is {max(g_width, e_width) / min(g_width, e_width):.2g} times {words}"
+    key = "too_wide" if g_width > e_width else "too_narrow"
+    text = WORDS[key].format(ratio=max(g_width, e_width) / min(g_width, e_width))
     if moved:
-        text += f" and peaks at θo = {g_peak:.0f}° instead of {e_peak:.0f}°"
+        text = WORDS["and_peaks"].format(text=text, got=g_peak, want=e_peak)
     if fit:
         what, value, actual, _ = fit
-        text += f" — as wide as {what} of about {float(f'{value:.2g}'):g} instead of {actual:g}"
+        text = WORDS["as_wide"].format(
+            text=text, what=what, value=float(f"{value:.2g}"), actual=actual
+        )
     return text
 
 
@@ -358,20 +336,16 @@ def _half_width(theta: np.ndarray, values: np.ndarray) -> float:
     return float(theta[above[-1]] - theta[above[0]]) or 1.0
 
 
-def _listed(names: list[str]) -> str:
-    """'D', 'D and G', 'diffuse, D and G'."""
-    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
-
-
 def terms_sentence(wrong: list[str], right: list[str], detail: str) -> str:
     """'the specular term is wrong (the diffuse term is right): every value ...'."""
-    text = f"the {_listed(wrong)} term{'s are' if len(wrong) > 1 else ' is'} wrong"
+    text = WORDS["terms_wrong" if len(wrong) > 1 else "term_wrong"].format(names=joined(wrong))
     if right:
-        text += f" (the {_listed(right)} term{'s are' if len(right) > 1 else ' is'} right)"
-    return text + (f": {detail}" if detail else "")
+        key = "terms_right" if len(right) > 1 else "term_right"
+        text = WORDS[key].format(text=text, names=joined(right))
+    return WORDS["detail"].format(text=text, detail=detail) if detail else text
 
 
 def sentence(text: str) -> str:
     """'Likely: ...' with a capital-free start and one final full stop."""
     text = text.strip().rstrip(".")
-    return f"Likely: {text}." if text else ""
+    return WORDS["likely"].format(text=text) if text else ""

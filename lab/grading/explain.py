@@ -427,15 +427,12 @@ class Explainer(TraceEvidence):
             return ""  # nearly right: a swap would look right too, and say nothing
         swapped = renderer.eval_angles(model, check.params, angles[:, [2, 3, 0, 1]])
         if diagnosis.same(check, swapped, expected) and not diagnosis.same(check, swapped, got):
-            return (
-                "your BRDF(L, V) gives the solution's BRDF(V, L) — L and V are swapped "
-                "somewhere (the solution is not symmetric in them)"
-            )
+            return diagnosis.WORDS["swapped_lv"]
         mirrored = angles.copy()
         mirrored[:, [1, 3]] = (90.0 - angles[:, [1, 3]]) % 360.0
         axes = renderer.eval_angles(model, check.params, mirrored)
         if diagnosis.same(check, axes, expected) and not diagnosis.same(check, axes, got):
-            return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y"
+            return diagnosis.WORDS["swapped_xy"]
         return ""
 
 

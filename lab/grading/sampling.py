@@ -22,6 +22,7 @@ from statistics import NormalDist
 import numpy as np
 
 from lab.constants import LUMA
+from lab.grading.words import SAMPLING as WORDS
 from lab.ibl import chisquare
 from lab.ibl.integrator import Environment, IBLRenderer, Progressive, local_view, sampler_text
 
@@ -125,7 +126,7 @@ def _bin_words(index: int) -> str:
     c1 = c0 + 2.0 / chisquare.THETA_BINS
     t0, t1 = math.degrees(math.acos(min(c1, 1.0))), math.degrees(math.acos(max(c0, -1.0)))
     p0 = 360.0 * pi / chisquare.PHI_BINS
-    return f"θ {t0:.0f}–{t1:.0f}°, φ {p0:.0f}–{p0 + 360.0 / chisquare.PHI_BINS:.0f}°"
+    return WORDS["bin"].format(t0=t0, t1=t1, p0=p0, p1=p0 + 360.0 / chisquare.PHI_BINS)
 
 
 def chi_square_views(raw, views, samples: int, alpha: float) -> list[tuple[str, bool] | None]:
@@ -135,42 +136,31 @@ def chi_square_views(raw, views, samples: int, alpha: float) -> list[tuple[str, 
     out: list[tuple[str, bool] | None] = []
     for (theta, phi), row in zip(views, raw, strict=True):
         observed, expected, (failed, not_unit, not_finite, _) = _split(row)
-        where = f"view θ = {theta:.0f}°, φ = {phi:.0f}°"
+        where = WORDS["view"].format(theta=theta, phi=phi)
+        said = {"where": where, "samples": samples}
         if not_finite:
-            out.append(
-                (f"{where}: {int(not_finite)} of {samples} samples are NaN or infinite", True)
-            )
+            out.append((WORDS["not_finite"].format(**said, count=int(not_finite)), True))
         elif not_unit > 0.001 * samples:
-            out.append(
-                (
-                    f"{where}: {int(not_unit)} of {samples} sampled directions are not unit "
-                    "vectors (a direction built from sin and cos has length 1)",
-                    True,
-                )
-            )
+            out.append((WORDS["not_unit"].format(**said, count=int(not_unit)), True))
         elif expected.sum() < 0.5 * samples:
-            out.append(
-                (
-                    f"{where}: your pdf integrates to {expected.sum() / samples:.3f} over the "
-                    "sphere, so it cannot describe your samples (see the pdf_integral check)",
-                    True,
-                )
-            )
+            out.append((WORDS["no_mass"].format(where=where, mass=expected.sum() / samples), True))
         else:
             stat, dof, p = chisquare.pearson(observed, expected, failed, samples - expected.sum())
             if p >= level:
                 out.append(None)
                 continue
             off = np.argmax((observed - expected) ** 2 / np.maximum(expected, 1.0))
-            out.append(
-                (
-                    f"{where}: the samples do not follow your pdf (χ² = {stat:.0f} for {dof} "
-                    f"degrees of freedom, p = {p:.2g} < {level:.2g}); most off: "
-                    f"{_bin_words(int(off))} holds {int(observed[off])} samples where the pdf "
-                    f"expects {expected[off]:.0f}",
-                    p < DECISIVE,
-                )
+            text = WORDS["not_following"].format(
+                where=where,
+                statistic=stat,
+                dof=dof,
+                p=p,
+                level=level,
+                bin=_bin_words(int(off)),
+                observed=int(observed[off]),
+                expected=expected[off],
             )
+            out.append((text, p < DECISIVE))
     return out
 
 
@@ -182,16 +172,15 @@ def judge_chi_square(raw, views, samples: int, alpha: float) -> tuple[bool, str,
     if lines:
         worst = next(i for i, v in enumerate(verdicts) if v is not None)
         more = len(lines) - 1
-        tail = f" (and {more} more view{'s' if more > 1 else ''} fail)" if more else ""
-        again = (
-            "; a second, independent draw failed as the first did"
-            if raw.shape[1] == COLUMNS and raw[:, -1].max() > 0
-            else ""
-        )
-        return False, lines[0] + tail + again, worst
+        text = lines[0]
+        if more:
+            text = WORDS["more" if more > 1 else "one_more"].format(text=text, more=more)
+        if raw.shape[1] == COLUMNS and raw[:, -1].max() > 0:
+            text = WORDS["again"].format(text=text)
+        return False, text, worst
     level = chisquare.sidak(alpha, len(views))
-    tested = ", ".join(f"{t:.0f}°" for t, _ in views)
-    return True, f"samples follow the pdf at every view (θ = {tested}; p ≥ {level:.2g})", -1
+    tested = ", ".join(WORDS["angle"].format(theta=t) for t, _ in views)
+    return True, WORDS["follows"].format(tested=tested, level=level), -1
 
 
 def same_chi_square(a: np.ndarray, b: np.ndarray, samples: int) -> bool:
@@ -260,33 +249,18 @@ def judge_pdf_integral(raw, views, samples: int, tolerance: float) -> tuple[bool
     off = np.abs(integrals - (1.0 - failed))
     usable = 1.0 - failed >= USABLE
     if (off <= allowed).all() and usable.all():
-        values = ", ".join(f"{v:.4f}" for v in integrals)
-        wasted = ", ".join(f"{100 * f:.1f}%" for f in failed)
-        return (
-            True,
-            f"the pdf integrates to {values} over the sphere: 1 less the samples that fail "
-            f"({wasted}), as a density of what your sampler draws should",
-            -1,
-        )
+        values = ", ".join(WORDS["integral"].format(value=v) for v in integrals)
+        wasted = ", ".join(WORDS["share"].format(percent=100 * f) for f in failed)
+        return True, WORDS["integrates"].format(values=values, wasted=wasted), -1
     worst = int(np.argmin(usable)) if not usable.all() else int(np.argmax(off - allowed))
     theta, phi = views[worst]
-    where = f"at the view θ = {theta:.0f}°, φ = {phi:.0f}°"
+    said = {"at": WORDS["at_view"].format(theta=theta, phi=phi), "percent": 100 * failed[worst]}
     if not usable[worst]:
-        return (
-            False,
-            f"{where} {100 * failed[worst]:.1f}% of your samples fail (pdf 0 where they land, "
-            f"or not a unit vector): a sampler must give a usable direction at least "
-            f"{100 * USABLE:.0f}% of the time",
-            worst,
-        )
-    return (
-        False,
-        f"{where} your pdf integrates to {integrals[worst]:.4f} over the sphere, but "
-        f"{100 * failed[worst]:.1f}% of your samples fail, so the density of what your "
-        f"sampler draws integrates to {1.0 - failed[worst]:.4f} (allowed ±"
-        f"{allowed[worst]:.3f}): the pdf does not describe the sampler",
-        worst,
+        return False, WORDS["unusable"].format(**said, usable=100 * USABLE), worst
+    text = WORDS["integral_off"].format(
+        **said, value=integrals[worst], density=1.0 - failed[worst], allowed=allowed[worst]
     )
+    return False, text, worst
 
 
 # -- the render at equal samples ---------------------------------------------------------

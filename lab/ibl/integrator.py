@@ -23,6 +23,7 @@ from lab.ibl.table import GLSL as TABLE_SAMPLER
 from lab.ibl.table import TableCache
 from lab.models import SHADER_DIR, Model, Value
 from lab.render import Renderer, as_model
+from lab.views.object import SHAPES  # the object view's shapes (u_shape); "sphere": the lit sphere
 
 STRATEGIES = ("uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power", "auto")
 STRATEGY_TITLES = {
@@ -46,8 +47,6 @@ ENVIRONMENT_TERMS = SHADER_DIR / "terms" / "environment.glsl"
 RENDER_VIEWS = ("ibl", "ibl_object")  # the sphere, and the lab's object (SHAPES)
 IBL_VIEWS = (*RENDER_VIEWS, "ibl_sample", "ibl_pdf")
 TABLE_VIEW = "ibl_table"  # the data-driven sampler's masses (lab.ibl.table)
-# The object view's shapes (lab.views.object.SHAPES, u_shape); "sphere" is the lit sphere.
-SHAPES = ("torus", "sphere", "rounded box", "bumpy sphere")
 NO_SAMPLER = """const bool HAS_SAMPLER = false;
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }"""

@@ -35,6 +35,18 @@ def plot(job: PlotJob) -> None:
     plots.save_figure(fig, job.out, job.size)
 
 
+# The albedo's quality, the app's and the page's: θi from `theta0` in `count` steps of `step`
+# degrees, `samples` along each of `wedges` wedges around the mirror direction
+# (shaders/views/albedo.glsl); FAST while a slider or the light moves.
+FULL = {"theta0": 0.0, "step": 2.5, "count": 36, "samples": 192, "wedges": 48}
+FAST = {"theta0": 0.0, "step": 85.0 / 8.0, "count": 9, "samples": 32, "wedges": 16}
+
+
+def thetas(quality: dict) -> np.ndarray:
+    """The θi (degrees) a quality samples."""
+    return quality["theta0"] + quality["step"] * np.arange(quality["count"])
+
+
 VIEW = ViewSpec(
     name="albedo",
     title="Directional albedo",
@@ -44,4 +56,5 @@ VIEW = ViewSpec(
     widget="lab.app.views.albedo:AlbedoView",
     plot=plot,
     order=60,
+    page_data={"full": FULL, "fast": FAST},
 )

@@ -31,8 +31,9 @@ class BrowserMissing(RuntimeError):
 
 
 @contextlib.contextmanager
-def chromium() -> Iterator[object]:
-    """A launched headless Chromium (Playwright Browser); never downloads one."""
+def chromium(flags: tuple[str, ...] = ()) -> Iterator[object]:
+    """A launched headless Chromium (Playwright Browser) with CHROMIUM_FLAGS and `flags`;
+    never downloads one."""
     try:
         from playwright.sync_api import sync_playwright
     except ImportError:
@@ -44,7 +45,7 @@ def chromium() -> Iterator[object]:
         raise BrowserMissing("Chromium is not installed: run apt-get install -y chromium")
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(
-            executable_path=executable, args=CHROMIUM_FLAGS, headless=True
+            executable_path=executable, args=[*CHROMIUM_FLAGS, *flags], headless=True
         )
         try:
             yield browser

@@ -4,7 +4,7 @@
 import { readFileSync } from "node:fs";
 
 import { direction, planeOfIncidence } from "./static/geometry.js";
-import { formatDigits, parseModel } from "./static/header.js";
+import { fill, formatDigits, parseModel } from "./static/header.js";
 import { peakValue, polarRadius } from "./static/plotscale.js";
 import { parseRgb, parseValue, sliderToValue, valueToSlider } from "./static/values.js";
 
@@ -27,6 +27,9 @@ const out = {
   peak: cases.peak.map(([thetaO, values, grazing]) => peakValue(thetaO, values, grazing)),
   radius: cases.radius.map(([f, top, log, decades]) => polarRadius(f, top, log, decades)),
   g: cases.g.map(([x, digits]) => formatDigits(x, digits)),
+  // {"float": "nan"} for what JSON cannot write (nan, inf, -inf).
+  fill: cases.fill.map(([template, values]) => fill(template, Object.fromEntries(Object.entries(values).map(([k, v]) =>
+    [k, v?.float === undefined ? v : Number(v.float.replace("inf", "Infinity"))])))),
   // The library's headers as the page would parse them (the manifest carries the Python's).
   headers: Object.fromEntries(Object.entries(cases.library).map(([name, { path, code }]) => {
     const parsed = attempt(() => parseModel(code, path, name));

@@ -136,7 +136,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser("web-bench", help="time the web lab in headless Chromium")
     p.add_argument("--size", type=int, default=512, help="sphere size in pixels")
     p.add_argument("--model", default="phong")
-    p.add_argument("--loads", type=int, default=5, help="page loads to time")
+    p.add_argument(
+        "--loads", type=int, default=7, help="loads of each page to time (in turns, default 7)"
+    )
     p.add_argument("--steps", type=int, default=120, help="slider positions to time")
     p.add_argument(
         "--views",

@@ -133,7 +133,7 @@ def exercise_entry(exercise: Exercise) -> dict:
 
 def diagnosis_rules() -> dict:
     """lab/grading/diagnosis.py's words and thresholds, for the page's diagnosis.js (which
-    carries the tests, not the sentences)."""
+    carries the tests, not the sentences: header.js fill() fills the templates)."""
     from lab.grading import diagnosis
 
     return {
@@ -141,6 +141,7 @@ def diagnosis_rules() -> dict:
         "channels": list(diagnosis.CHANNELS),
         "match_share": diagnosis.MATCH_SHARE,
         "grazing": diagnosis.GRAZING,
+        "words": diagnosis.WORDS,  # the sentences, str.format templates (lab/grading/words.py)
     }
 
 

@@ -91,7 +91,24 @@ def manifest() -> dict:
         "exercises": exercise_list(),
         # The measured model's file: a table opened in the page is drawn by it.
         "measured_model": MEASURED_MODEL.read_text(encoding="utf-8"),
+        "measured_table": measured_table(),
         "environments": environments(),
+    }
+
+
+def measured_table() -> dict:
+    """What the page's measured.js reads a MERL .binary table by: lab/measured/merl.py's
+    header size, largest dimension, MERL's own dimensions and channel scales, and the
+    texture unit of lab/measured/model.py."""
+    from lab.measured import merl
+    from lab.measured.model import TABLE_UNIT
+
+    return {
+        "header_bytes": merl.HEADER_BYTES,
+        "max_dim": merl.MAX_DIM,
+        "dims": list(merl.MERL_DIMS),
+        "scale": [float(s) for s in merl.SCALE],
+        "unit": TABLE_UNIT,
     }
 
 

@@ -11,6 +11,7 @@ from PyQt6.QtCore import Qt
 from lab.app.state import ModelState
 from lab.app.views.base import View, finite_max, opaque, pen, state_key
 from lab.app.widgets import LiveText
+from lab.views import albedo as spec
 
 
 class AlbedoView(View):
@@ -19,8 +20,6 @@ class AlbedoView(View):
     title = "Directional albedo"
     name = "albedo"
     NOTE = "albedo = ∫ f_r cos θo dω (largest colour channel)"
-    FAST = (np.linspace(0, 85, 9), 32, 16)
-    FULL = (np.arange(0, 90, 2.5), 192, 48)
 
     def __init__(self, lab, renderer):
         super().__init__(lab, renderer)
@@ -71,9 +70,15 @@ class AlbedoView(View):
             key = state_key(state, phi_i)
 
             def compute(full: bool, st=state):
-                thetas, samples, wedges = self.FULL if full else self.FAST
-                return thetas, self.renderer.albedo(
-                    st.model, st.values, thetas, phi_i, samples=samples, wedges=wedges
+                quality = spec.FULL if full else spec.FAST
+                angles = spec.thetas(quality)
+                return angles, self.renderer.albedo(
+                    st.model,
+                    st.values,
+                    angles,
+                    phi_i,
+                    samples=quality["samples"],
+                    wedges=quality["wedges"],
                 )
 
             result, rough = self.best(state, fast, (*key, "fast"), (*key, "full"), compute)

@@ -25,13 +25,12 @@ from lab.app.widgets import LiveText, setting_label
 from lab.glsl import ShaderCompileError
 from lab.models import ModelError
 from lab.render import direction, plane_of_incidence
+from lab.views.sh import GRID, MAX_ORDER
 
 if TYPE_CHECKING:  # the SH maths is imported when first used: the first frame draws
     from lab.measured import sh  # only the plane of incidence
 
-MAX_ORDER = 16
 SERIES_COLOR = (255, 210, 0)
-GRID = (48, 96)  # Gauss-Legendre nodes in cos(theta) x uniform phi: exact enough to order 16
 
 
 @lru_cache(maxsize=2)

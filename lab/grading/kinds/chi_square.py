@@ -68,7 +68,11 @@ class ChiSquareKind(SampledKind):
 
     def practice(self, exercise, check: Check, values) -> dict:
         # The solution's numbers: the page's explanation compares with them (explain).
-        return {**self.practice_views(check), "solution": floats_b64(values[check.name])}
+        return {
+            **self.practice_views(check),
+            "captions": self.captions,  # the histograms' titles
+            "solution": floats_b64(values[check.name]),
+        }
 
     def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
         samples, views = check.options["samples"], self.views(check)
@@ -97,9 +101,9 @@ class ChiSquareKind(SampledKind):
         mine_only[:, 800:1600] = expected[:, 800:1600]
         samples_like = sampling.same_chi_square(mine_only, expected, samples)
         if pdf_off and samples_like:
-            return "your samples are drawn like the solution's: the pdf is what is wrong"
+            return sampling.WORDS["pdf_wrong"]
         if not pdf_off and not samples_like:
-            return "your pdf agrees with the solution's: the sampler is what is wrong"
+            return sampling.WORDS["sampler_wrong"]
         return ""
 
 

@@ -47,6 +47,7 @@ class SampledKind(CheckKind):
         samples and integrates exactly the grader's directions (web/static/sampling.js)."""
         views = self.views(check)
         return {
+            "rules": page_rules(),
             "views": [list(v) for v in views],
             "V": [chisquare.view_direction(t, p).tolist() for t, p in views],
             "frames": [
@@ -72,3 +73,21 @@ class SampledKind(CheckKind):
         if not wrong.any():
             return None  # the program behaves as the solution's here: nothing to name
         return diagnosis.nearest(exact, mine, candidates, wrong)
+
+
+def page_rules() -> dict:
+    """The sampling checks' words, bins and thresholds, as the page's sampling.js takes
+    them (it carries the mechanisms: the quadrature, Pearson's test, the histograms)."""
+    return {
+        "words": sampling.WORDS,
+        "bins": [chisquare.THETA_BINS, chisquare.PHI_BINS],
+        "min_expected": chisquare.MIN_EXPECTED,
+        "sub": chisquare.SUB,
+        "tolerance": chisquare.TOLERANCE,
+        "max_levels": chisquare.MAX_LEVELS,
+        "max_cells": chisquare.MAX_CELLS,
+        "redraw": sampling.REDRAW,
+        "decisive": sampling.DECISIVE,
+        "usable": sampling.USABLE,
+        "z_integral": sampling.Z_INTEGRAL,
+    }

@@ -4,11 +4,12 @@
 // stored values of the known mistakes and mutants and of each declared term alone.
 // Why in JavaScript too: practice mode explains the student's values in the browser; its words
 // come as data.
-import { formatDigits as g, formatG } from "./header.js";
+import { fill, formatDigits as g } from "./header.js";
 
 // The rules' words and thresholds are lab/grading/diagnosis.py's, sent as data in
 // exercises.json ("diagnosis": named factors with their sentences, channel names, the share
-// of rows a pattern must hold on, the grazing angle): useRules() before any diagnosis.
+// of rows a pattern must hold on, the grazing angle, and every sentence as a str.format
+// template of lab/grading/words.py): useRules() before any diagnosis.
 let RULES = null;
 
 /** Takes exercises.json's "diagnosis" (lab/web/exercises.py diagnosis_rules). */
@@ -20,6 +21,12 @@ const rules = () => {
   if (!RULES) throw new Error("diagnosis.js: no rules yet (useRules with exercises.json's diagnosis)");
   return RULES;
 };
+
+/** The sentence `key` of lab/grading/words.py DIAGNOSIS, filled as Python fills it. */
+const say = (key, values = {}) => fill(rules().words[key], values);
+
+/** 'D', 'D and G', 'diffuse, D and G' (words.joined). */
+const joined = (names) => (names.length === 1 ? names[0] : say("listed", { most: names.slice(0, -1).join(", "), last: names.at(-1) }));
 
 // -- rows of (n, 3) values, as flat Float32/Float64 arrays with a stride -----------------
 /** Rows (n x 3 numbers) from a flat array of `stride` numbers per row. */
@@ -95,14 +102,10 @@ function factorName(value) {
 
 function ratioPhrase(value) {
   const named = factorName(value);
-  if (named && value > 1) return `every value is ${named[0]} times too large — ${named[1]}`;
+  if (named && value > 1) return say("named_large", { name: named[0], cause: named[1] });
   const inverse = factorName(1 / value);
-  if (inverse && value < 1) {
-    return `every value is ${inverse[0]} times too small — ${named ? named[1] : ""}`.replace(/[ —]+$/, "");
-  }
-  const word = value > 1 ? "large" : "small";
-  const times = value > 1 ? value : 1 / value;
-  return `every value is ${g(times, 3)} times too ${word}: a constant factor is off`;
+  if (inverse && value < 1) return say("named_small", { name: inverse[0], cause: named ? named[1] : "" }).replace(/[ —]+$/, "");
+  return value > 1 ? say("large", { times: value }) : say("small", { times: 1 / value });
 }
 
 const cosDeg = (d) => Math.cos((d * Math.PI) / 180);
@@ -111,33 +114,22 @@ const cosDeg = (d) => Math.cos((d * Math.PI) / 180);
 export function shape(check, angles, expected, got) {
   const wrong = within(check, got, expected, 1).map((ok) => !ok);
   if (!wrong.some(Boolean)) return "";
-  if (!got.every((row) => row.every(Number.isFinite))) {
-    return "some values are NaN or infinite — a division by zero or the pow/sqrt of a " +
-      "negative number; guard them with max(..., EPS)";
-  }
+  if (!got.every((row) => row.every(Number.isFinite))) return say("not_finite");
   const negative = got.map((row) => row.some((x) => x < 0));
   const nNegative = negative.filter(Boolean).length;
   if (nNegative) {
     const atZero = expected.every((row, i) => !negative[i] || row.every((x) => x <= 0));
-    return `${nNegative} values are negative ${atZero ? "where the solution is 0" : "in places"} — a dot product is not ` +
-      "clamped (max(..., 0.0)) or the below-the-surface test is missing";
+    return say("negative", { count: nNegative, where: say(atZero ? "negative_at_zero" : "negative_in_places") });
   }
   const zero = expected.map((row) => row.every((x) => x <= 0));
   if (wrong.every((w, i) => !w || zero[i])) {
     const below = angles.map((a) => Math.max(a[0], a[2]) >= 90);
-    if (wrong.every((w, i) => !w || below[i])) {
-      return "the values are wrong only where the solution is 0 (light or view below the " +
-        "surface) — return vec3(0.0) when N·L ≤ 0 or N·V ≤ 0";
-    }
-    return "the values are wrong only where the solution is 0, with light and view above " +
-      "the surface — a dot product that the solution clamps (max(..., 0.0)) is not";
+    return say(wrong.every((w, i) => !w || below[i]) ? "wrong_below" : "wrong_above");
   }
   const nothing = got.map((row) => row.every((x) => Math.abs(x) <= check.atol));
   if (wrong.every((w, i) => !w || (nothing[i] && !zero[i]))) {
     // Not "grey where the solution is coloured": zero is no colour at all.
-    const where = nothing.every(Boolean) ? "everywhere" : "wherever it is wrong";
-    return `it is 0 ${where} while the solution's is not — a part is missing, or never ` +
-      "added to what is returned";
+    return say("zero", { where: say(nothing.every(Boolean) ? "zero_everywhere" : "zero_where_wrong") });
   }
   return ratioShape(check, angles, expected, got) || oneChannel(check, expected, got, wrong) ||
     grazing(angles, wrong, zero);
@@ -161,19 +153,19 @@ function ratioShape(check, angles, expected, got) {
   const cosI = idx.map((i) => cosDeg(angles[i][0]));
   const cosO = idx.map((i) => cosDeg(angles[i][2]));
   const factors = [
-    [cosI, "an extra factor cos θi (N·L) — the renderer multiplies by N·L itself"],
-    [cosO, "an extra factor cos θo (N·V)"],
-    [cosI.map((c) => 1 / c), "divided by cos θi (N·L) once too often"],
-    [cosO.map((c) => 1 / c), "divided by cos θo (N·V) once too often"],
-    [cosI.map((c, k) => Math.sqrt(c * cosO[k])), "an extra factor √(cos θi cos θo)"],
-    [cosI.map((c, k) => 1 / Math.sqrt(c * cosO[k])), "divided by √(cos θi cos θo) once too often"],
+    [cosI, "factor_cos_i"],
+    [cosO, "factor_cos_o"],
+    [cosI.map((c) => 1 / c), "factor_over_cos_i"],
+    [cosO.map((c) => 1 / c), "factor_over_cos_o"],
+    [cosI.map((c, k) => Math.sqrt(c * cosO[k])), "factor_sqrt"],
+    [cosI.map((c, k) => 1 / Math.sqrt(c * cosO[k])), "factor_over_sqrt"],
   ];
-  for (const [factor, words] of factors) {
+  for (const [factor, key] of factors) {
     if (std(factor) < 0.05) continue;
     [med, sp] = spread(ratio.flatMap((row, k) => row.map((r) => r / factor[k])));
     if (sp < 0.01) {
-      const scale = Math.abs(med - 1) < 0.02 ? "" : ` (and a constant factor ${g(med, 3)})`;
-      return `the values are off by ${words}${scale}`;
+      if (Math.abs(med - 1) < 0.02) return say("off_by", { factor: say(key) });
+      return say("off_by_scaled", { factor: say(key), scale: med });
     }
   }
   return "";
@@ -188,12 +180,11 @@ function oneChannel(check, expected, got, wrong) {
   const grey = got.map((row) => ptp(row) <= 1e-6 * (1 + Math.max(...row.map(Math.abs))));
   const wrongColoured = wrong.map((w, i) => w && coloured[i]);
   if (wrongColoured.some(Boolean) && wrongColoured.every((w, i) => !w || grey[i]) && mean(grey) > 0.9) {
-    return "the result is grey where the solution is coloured — a float is used where a " +
-      "colour (vec3) belongs, e.g. one channel of a colour parameter";
+    return say("grey");
   }
   const channels = [0, 1, 2].map((c) => got.some((row, i) =>
     Math.abs(row[c] - expected[i][c]) > check.atol + check.rtol * Math.abs(expected[i][c])));
-  if (channels.filter(Boolean).length === 1) return `only the ${rules().channels[channels.indexOf(true)]} channel is wrong`;
+  if (channels.filter(Boolean).length === 1) return say("one_channel", { channel: rules().channels[channels.indexOf(true)] });
   return "";
 }
 
@@ -203,8 +194,7 @@ function grazing(angles, wrong, zero) {
   const elsewhere = steep.map((s, i) => !s && !zero[i]);
   const nElsewhere = elsewhere.filter(Boolean).length;
   if (nElsewhere >= 8 && !wrong.some((w, i) => w && elsewhere[i]) && wrong.some((w, i) => w && steep[i])) {
-    return `the values are right except near grazing (θ above ${formatG(limit)}°) — check ` +
-      "the terms that matter there: Fresnel, G and the N·L·N·V denominator";
+    return say("grazing", { grazing: limit });
   }
   return "";
 }
@@ -247,19 +237,16 @@ export function lobe(check, theta, expected, got, params, table = null) {
     const peak = fitPeak(table, eWidth, gWidth, gPeak);
     if (peak) {
       const [what, value, actual] = peak;
-      return `the lobe peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}°, as it does ` +
-        `with ${what} of about ${formatG(Number(g(value, 2)))} instead of ${formatG(actual)}`;
+      return say("peak_fit", { got: gPeak, want: ePeak, what, value: Number(g(value, 2)), actual });
     }
-    return `the lobe peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}° — check the ` +
-      "reflected direction (or the half vector) and which vectors enter it";
+    return say("peak", { got: gPeak, want: ePeak });
   }
   if (!wider) return "";
-  const words = gWidth > eWidth ? "too wide" : "too narrow";
-  let text = `the lobe is ${g(Math.max(gWidth, eWidth) / Math.min(gWidth, eWidth), 2)} times ${words}`;
-  if (moved) text += ` and peaks at θo = ${gPeak.toFixed(0)}° instead of ${ePeak.toFixed(0)}°`;
+  let text = say(gWidth > eWidth ? "too_wide" : "too_narrow", { ratio: Math.max(gWidth, eWidth) / Math.min(gWidth, eWidth) });
+  if (moved) text = say("and_peaks", { text, got: gPeak, want: ePeak });
   if (fit) {
     const [what, value, actual] = fit;
-    text += ` — as wide as ${what} of about ${formatG(Number(g(value, 2)))} instead of ${formatG(actual)}`;
+    text = say("as_wide", { text, what, value: Number(g(value, 2)), actual });
   }
   return text;
 }
@@ -291,14 +278,14 @@ export function fitPeak(table, eWidth, gWidth, gPeak) {
 }
 
 export function termsSentence(wrong, right, detail) {
-  let text = `the ${wrong.join(" and ")} term${wrong.length > 1 ? "s are" : " is"} wrong`;
-  if (right.length) text += ` (the ${right.join(" and ")} term${right.length > 1 ? "s are" : " is"} right)`;
-  return text + (detail ? `: ${detail}` : "");
+  let text = say(wrong.length > 1 ? "terms_wrong" : "term_wrong", { names: joined(wrong) });
+  if (right.length) text = say(right.length > 1 ? "terms_right" : "term_right", { text, names: joined(right) });
+  return detail ? say("detail", { text, detail }) : text;
 }
 
 export function sentence(text) {
   text = text.trim().replace(/\.+$/, "");
-  return text ? `Likely: ${text}.` : "";
+  return text ? say("likely", { text }) : "";
 }
 
 // -- stored references: inflated once per exercise ---------------------------------------
@@ -409,16 +396,11 @@ function swaps(check, angles, expected, evaluate) {
   const got = evaluate(check.params, angles);
   if (same(check, got, expected)) return "";
   const swapped = evaluate(check.params, angles.map((a) => [a[2], a[3], a[0], a[1]]));
-  if (same(check, swapped, expected) && !same(check, swapped, got)) {
-    return "your BRDF(L, V) gives the solution's BRDF(V, L) — L and V are swapped " +
-      "somewhere (the solution is not symmetric in them)";
-  }
+  if (same(check, swapped, expected) && !same(check, swapped, got)) return say("swapped_lv");
   const wrap = (d) => (((90 - d) % 360) + 360) % 360;
   const mirrored = angles.map((a) => [a[0], wrap(a[1]), a[2], wrap(a[3])]);
   const axes = evaluate(check.params, mirrored);
-  if (same(check, axes, expected) && !same(check, axes, got)) {
-    return "the X and Y axes are swapped — alpha_x belongs with X, alpha_y with Y";
-  }
+  if (same(check, axes, expected) && !same(check, axes, got)) return say("swapped_xy");
   return "";
 }
 

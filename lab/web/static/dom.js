@@ -33,6 +33,43 @@ export function viewBox(canvas, what, filename) {
   return el("div", { class: "view", "data-view": what }, canvas, button);
 }
 
+/** Sets a node's text only when it changes: the same text written again still replaces the
+ * node, so that the next read of a size (a plot's font) forces a layout mid-frame, and an
+ * assistive technology may hear it again. */
+export function setText(node, text) {
+  if (node.textContent !== text) node.textContent = text;
+}
+
+const widths = new WeakMap(); // canvas -> its CSS width, kept by `resized`
+let resized = null;
+let redraw = () => {}; // onCanvasResize
+
+/** Calls `callback` when a canvas whose width cssWidth keeps changes size (drawn since at
+ * the old width: the page draws again with the new one). */
+export function onCanvasResize(callback) {
+  redraw = callback;
+}
+
+/** A canvas's CSS width (0 while hidden), read once and then kept by a ResizeObserver: a
+ * read of clientWidth while a frame draws forces a layout of the page (most of a slider
+ * frame's time, once the views' notes have changed). */
+export function cssWidth(canvas) {
+  if (!widths.has(canvas)) {
+    resized ??= new ResizeObserver((entries) => {
+      let changed = false;
+      for (const entry of entries) {
+        const width = entry.target.clientWidth; // laid out now: no layout forced
+        changed ||= width !== widths.get(entry.target);
+        widths.set(entry.target, width);
+      }
+      if (changed) redraw();
+    });
+    resized.observe(canvas);
+    widths.set(canvas, canvas.clientWidth);
+  }
+  return widths.get(canvas);
+}
+
 /** The short name of a model for pickers: its title up to the first colon. */
 export const shortTitle = (model, name) => (model?.title ? model.title.split(":")[0].trim() : name);
 

@@ -29,6 +29,7 @@ export async function load(lab) {
   lab.environments = manifest.environments; // the IBL view's maps: names and size
   lab.exerciseList = manifest.exercises || [];
   lab.measuredCode = manifest.measured_model; // lab/measured/measured.glsl
+  lab.measuredTable = manifest.measured_table; // how merl.py reads a table (measured.js)
   // The texts come with the manifest (one request); a manifest without them, file by file.
   const sources = manifest.sources || {};
   const texts = await Promise.all(manifest.files.map((f) => sources[f] ?? fetchText(`shaders/${f}`)));

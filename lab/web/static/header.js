@@ -32,17 +32,75 @@ export class ModelError extends Error {
 export function formatDigits(x, digits = 6) {
   if (!Number.isFinite(x)) return Number.isNaN(x) ? "nan" : x > 0 ? "inf" : "-inf";
   if (x === 0) return Object.is(x, -0) ? "-0" : "0";
-  const exponent = Math.floor(Math.log10(Math.abs(Number(x.toPrecision(digits)))));
+  const sign = x < 0 ? "-" : "";
+  const [mantissa, exponent] = roundSignificant(Math.abs(x), digits);
   const strip = (t) => (t.includes(".") ? t.replace(/0+$/, "").replace(/\.$/, "") : t);
   if (exponent < -4 || exponent >= digits) {
-    const [mantissa, exp] = x.toExponential(digits - 1).split("e");
-    return `${strip(mantissa)}e${exp[0] === "-" ? "-" : "+"}${exp.replace(/^[+-]/, "").padStart(2, "0")}`;
+    const e = `${exponent < 0 ? "-" : "+"}${String(Math.abs(exponent)).padStart(2, "0")}`;
+    return `${sign}${strip(mantissa[0] + (digits > 1 ? `.${mantissa.slice(1)}` : ""))}e${e}`;
   }
-  return strip(x.toFixed(Math.max(0, digits - 1 - exponent)));
+  if (exponent < 0) return sign + strip(`0.${"0".repeat(-exponent - 1)}${mantissa}`);
+  const whole = mantissa.slice(0, exponent + 1);
+  return sign + strip(exponent + 1 < digits ? `${whole}.${mantissa.slice(exponent + 1)}` : whole);
+}
+
+/** The exact decimal digits of x >= 0 ("0.125", "30000000000000000000000"), or null where
+ * they run past 100 places (no tie can then fall within a double's digits). */
+function exactDecimal(x) {
+  if (x >= 1e21) return BigInt(x).toString();
+  return Number.isInteger(x * 2 ** 100) ? x.toFixed(100) : null;
+}
+
+/** x > 0 to `digits` significant digits as Python rounds (an exact tie to the even digit,
+ * where toExponential rounds it up): the digits, and the exponent of the first. */
+function roundSignificant(x, digits) {
+  const [m, e] = x.toExponential(digits - 1).split("e");
+  const exact = exactDecimal(x);
+  if (exact) {
+    const point = exact.includes(".") ? exact.indexOf(".") : exact.length;
+    const all = exact.replace(".", "");
+    const lead = all.search(/[1-9]/);
+    const kept = all.slice(lead, lead + digits).padEnd(digits, "0");
+    if (/^50*$/.test(all.slice(lead + digits)) && Number(kept.slice(-1)) % 2 === 0) return [kept, point - lead - 1];
+  }
+  return [m.replace(".", ""), Number(e)];
 }
 
 /** Python's `format(x, "g")`: 6 significant digits. */
 export const formatG = (x) => formatDigits(x, 6);
+
+/** Python's format(x, f".{digits}f"): toFixed, but an exact tie goes to the even digit as
+ * in Python (0.125 -> "0.12", 2.5 -> "2"), not away from zero. */
+export function formatFixed(x, digits) {
+  if (!Number.isFinite(x)) return Number.isNaN(x) ? "nan" : x > 0 ? "inf" : "-inf";
+  const sign = x < 0 || Object.is(x, -0) ? "-" : "";
+  const exact = exactDecimal(Math.abs(x));
+  if (Math.abs(x) >= 1e21) return sign + exact + (digits ? `.${"0".repeat(digits)}` : "");
+  let text = Math.abs(x).toFixed(digits);
+  if (exact) {
+    const [whole, fraction = ""] = exact.split(".");
+    const kept = fraction.slice(0, digits);
+    if (/^50*$/.test(fraction.slice(digits)) && Number((kept || whole).slice(-1)) % 2 === 0) {
+      text = digits ? `${whole}.${kept}` : whole;
+    }
+  }
+  return sign + text;
+}
+
+/** Python's str.format for the lab's sentences, templates that come from Python as data
+ * (lab/grading/words.py): {name}, and {name:spec} with spec g, .Ng, .Nf or +.Nf. */
+export function fill(template, values) {
+  return template.replace(/\{(\w+)(?::([^}]*))?\}/g, (_, name, spec) => {
+    if (!(name in values)) throw new Error(`fill: no value for {${name}} in "${template}"`);
+    const value = values[name];
+    if (spec === undefined) return String(value);
+    const parts = /^(\+?)(?:\.(\d+))?([fg])$/.exec(spec);
+    if (!parts) throw new Error(`fill: the format spec "${spec}" of "${template}" is not one the page knows`);
+    const digits = parts[2] === undefined ? 6 : Number(parts[2]);
+    const text = parts[3] === "f" ? formatFixed(value, digits) : formatDigits(value, Math.max(digits, 1));
+    return parts[1] && !text.startsWith("-") ? `+${text}` : text;
+  });
+}
 
 /** Python's repr() of a string (quotes chosen the way Python chooses them). */
 export function pyRepr(text) {

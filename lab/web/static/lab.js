@@ -3,7 +3,7 @@
 // the frame after, coarse, and at full quality the frame after that; views out of sight
 // draw when the browser is idle or when they scroll in. Model files come from shaders/,
 // assembled exactly as the desktop lab assembles them.
-import { $, el, savePng, showNotes, showTip } from "./dom.js";
+import { $, el, onCanvasResize, savePng, showNotes, showTip } from "./dom.js";
 import { LabState } from "./state.js";
 import { keptFiles, storeProblem } from "./store.js";
 import { forgetFiles, load, loadViews, openFile, restoreDrafts, restoreFiles } from "./files.js";
@@ -32,6 +32,7 @@ function wire(lab) {
     fitEmbed(lab);
     lab.requestRender();
   });
+  onCanvasResize(() => lab.requestRender()); // a plot's text follows its canvas's new size
   $("#add-model").addEventListener("click", () => {
     addPanel(lab, lab.panels[lab.panels.length - 1]?.name || lab.order[0]);
     lab.requestRender();

@@ -6,18 +6,18 @@
 import { ModelError, parseModel } from "./header.js";
 import { parseBrdf } from "./explorer.js";
 
-const HEADER_BYTES = 12;
-const MAX_DIM = 4096; // a header larger than this is not a BRDF table but a misread file
-const MERL_DIMS = [90, 90, 180];
-// Stored value x scale = f_r in 1/sr (R, G, B), as merl.SCALE.
-const SCALE = [1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0];
-export const TABLE_UNIT = 7; // texture unit of the table, as lab/measured/model.py
+// The format's numbers are lab/measured/merl.py's and model.py's, the manifest's
+// measured_table: header_bytes, max_dim (a header larger than this is not a BRDF table but
+// a misread file), dims (MERL's own), scale (stored value x scale = f_r in 1/sr, R, G, B)
+// and unit (the table's texture unit).
 
 const tuple = (dims) => `(${dims.join(", ")})`;
 
 /** The table of a .binary file: {dims: [n_h, n_d, n_p], texels: RGB float32 in the
- * texture's order (phi_d fastest), unmeasured values as 0}. Throws ModelError. */
-export function parseMerl(buffer, path) {
+ * texture's order (phi_d fastest), unmeasured values as 0}, read by `format` (the
+ * manifest's measured_table). Throws ModelError. */
+export function parseMerl(buffer, path, format) {
+  const { header_bytes: HEADER_BYTES, max_dim: MAX_DIM, dims: MERL_DIMS, scale: SCALE } = format;
   const size = buffer.byteLength;
   if (size < HEADER_BYTES) {
     throw new ModelError(`file has ${size} bytes, too short for the 12-byte header: not a MERL .binary`, path);
@@ -56,7 +56,7 @@ export function parseMerl(buffer, path) {
     throw new ModelError(`${bad} value(s) are NaN or infinite, the first in channel ${"RGB"[c]} at bin ` +
       `(theta_h ${h}, theta_d ${d}, phi_d ${p}); mark missing samples with a negative value instead`, path);
   }
-  return { dims, texels, path };
+  return { dims, texels, path, unit: format.unit };
 }
 
 /** The measured model for a table: the header and GLSL of measured.glsl (`code`), named
@@ -69,6 +69,7 @@ export function measuredModel(table, code, name) {
   const textures = new WeakMap(); // one texture per WebGL context (each panel has its own)
   model.bind = (gl, compiled) => {
     if (!("u_measured" in compiled.uniforms)) return;
+    const TABLE_UNIT = table.unit;
     let texture = textures.get(gl);
     if (!texture) {
       const [n_h, n_d, n_p] = table.dims;
@@ -123,7 +124,7 @@ export async function openModelFile(file, lab) {
   };
   const data = binary ? await file.arrayBuffer() : await file.text();
   return putModel(lab, name, () => (binary
-    ? Object.assign(measuredModel(parseMerl(data, file.name), lab.measuredCode, name),
+    ? Object.assign(measuredModel(parseMerl(data, file.name, lab.measuredTable), lab.measuredCode, name),
       { notText: TABLE_NOT_TEXT, opened: file.name })
     : rebuild(data)));
 }

@@ -6,7 +6,7 @@ import { ModelError, defaults } from "./header.js";
 import { direction, planeOfIncidence } from "./geometry.js";
 import { assembleFragment, floatTexture, startProgram, vertexSource } from "./assemble.js";
 import { showOnly } from "./deck.js";
-import { $, el, shortTitle, viewBox } from "./dom.js";
+import { $, el, setText, shortTitle, viewBox } from "./dom.js";
 import { CompileFailure, DISPLAY_SHADER, compile, finishModelProgram, floatTarget, loopStop, setUniform } from "./glkit.js";
 import { paramControl } from "./controls.js";
 import { PALETTE } from "./state.js";
@@ -204,13 +204,13 @@ export class Panel {
     const text = stop ? `${this.model.path}:${stop.line}: the loop at line ${stop.line} did not end within ` +
       `${Number(this.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at θo = ${stop.x - 90}° of the polar plot; ` +
       "the lab stopped it, so the pictures are wrong: check its exit condition (on a GPU such a loop freezes the screen)" : "";
-    this.loopBox.textContent = text;
+    setText(this.loopBox, text);
     this.loopBox.hidden = !text;
   }
 
   showError(text) {
     this.error = text;
-    this.errorBox.textContent = text;
+    setText(this.errorBox, text);
     this.errorBox.hidden = !text;
   }
 

@@ -3,6 +3,7 @@
 // number of decades below the top. tests/test_web_mirrors.py runs these against the Python.
 // Why in JavaScript too: the page scales its own plots of models Python never sees (opened or
 // edited files).
+import { cssWidth } from "./dom.js";
 
 /** The largest finite value of `values` (sampled at thetaO, degrees) with |thetaO| within
  * grazingDeg; 0 when there is none (plotscale.peak_value). */
@@ -30,7 +31,7 @@ export function polarRadius(f, top, log, decades) {
 
 /** Axes text for a canvas plot: a small font in canvas pixels. */
 export function font(ctx, canvas, px = 12) {
-  const size = Math.round((px * canvas.width) / (canvas.clientWidth || canvas.width));
+  const size = Math.round((px * canvas.width) / (cssWidth(canvas) || canvas.width));
   ctx.font = `${size}px system-ui, sans-serif`;
   return size;
 }

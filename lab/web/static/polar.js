@@ -4,7 +4,7 @@
 import { formatG } from "./header.js";
 import { drawCurve, pageFontPx, sharedRange } from "./deck.js";
 import { peakValue, polarRadius as scaleRadius } from "./plotscale.js";
-import { $ } from "./dom.js";
+import { $, cssWidth } from "./dom.js";
 import { POLAR_STEPS } from "./panel.js";
 import { round } from "./state.js";
 
@@ -62,7 +62,7 @@ function drawPolar(lab, canvas, curves, thetaI, scale, legend = false) {
   const w = canvas.width;
   const h = canvas.height;
   // Text the same size on screen whatever the canvas is scaled to (embedded demos shrink it).
-  const shown = canvas.clientWidth || w;
+  const shown = cssWidth(canvas) || w;
   const font = lab.embed ? Math.round((pageFontPx() * w) / shown) : Math.min(Math.round((12 * w) / shown), Math.round(w / 14));
   const ringFont = Math.round(font * (lab.embed ? 1 : 0.85));
   const cx = w / 2;

@@ -7,22 +7,34 @@
 // the same adaptive quadrature over ibl_pdf.glsl. The IBL render check is the grader's
 // alone (its z-test and noise ratio take many passes of two estimators): the page lists it
 // among the checks only the grader runs.
+// The bins, thresholds and sentences are the grader's (lab/ibl/chisquare.py,
+// lab/grading/sampling.py, lab/grading/words.py SAMPLING), sent with each check as data
+// (check.rules: lab/grading/kinds/sampled.py page_rules); this file carries the mechanisms.
 // Why in JavaScript too: practice mode checks the student's text in the browser, which never
 // reaches Python.
 import { floatTexture } from "./assemble.js";
 import { sentence } from "./diagnosis.js";
-import { formatDigits as gFormat } from "./header.js";
+import { fill } from "./header.js";
 
 export const SAMPLED_KINDS = ["chi_square", "pdf_integral"];
 
-const THETA_BINS = 20;
-const PHI_BINS = 40;
-const BINS = THETA_BINS * PHI_BINS;
-const MIN_EXPECTED = 5;
-const SUB = 4; // cells per bin side before refinement (chisquare.SUB)
-const TOLERANCE = 1e-7; // a cell is done when halving it changes its probability less
-const MAX_LEVELS = 16;
-const MAX_CELLS = 400_000;
+// The grader's numbers, from the check being run (useRules): bins in cos θ and φ, the
+// expected count below which bins are pooled, the quadrature's cells per bin side, its
+// tolerance and limits, the second draw's seed offset, the p-value that needs no second
+// draw, the usable share of samples and the z of the integral's allowance.
+let THETA_BINS, PHI_BINS, BINS, MIN_EXPECTED, SUB, TOLERANCE, MAX_LEVELS, MAX_CELLS;
+let REDRAW, DECISIVE, USABLE, Z_INTEGRAL, WORDS;
+
+function useRules(rules) {
+  [THETA_BINS, PHI_BINS] = rules.bins;
+  BINS = THETA_BINS * PHI_BINS;
+  ({ min_expected: MIN_EXPECTED, sub: SUB, tolerance: TOLERANCE, max_levels: MAX_LEVELS, max_cells: MAX_CELLS } = rules);
+  ({ redraw: REDRAW, decisive: DECISIVE, usable: USABLE, z_integral: Z_INTEGRAL, words: WORDS } = rules);
+}
+
+/** The sentence `key` of lab/grading/words.py SAMPLING, filled as Python fills it. */
+const say = (key, values = {}) => fill(WORDS[key], values);
+
 const WIDTH = 1024; // texels per row of a pass, as the grader's _texel_pass
 const CHUNK_ROWS = 256; // rows of one pdf pass (one render target size for all of them)
 const TAU = 2 * Math.PI;
@@ -248,18 +260,14 @@ function binWords(index) {
   const c0 = -1 + (2 * ti) / THETA_BINS;
   const c1 = c0 + 2 / THETA_BINS;
   const deg = (r) => (r * 180) / Math.PI;
-  const t0 = deg(Math.acos(Math.min(c1, 1)));
-  const t1 = deg(Math.acos(Math.max(c0, -1)));
   const p0 = (360 * pi) / PHI_BINS;
-  return `θ ${t0.toFixed(0)}–${t1.toFixed(0)}°, φ ${p0.toFixed(0)}–${(p0 + 360 / PHI_BINS).toFixed(0)}°`;
+  return say("bin", { t0: deg(Math.acos(Math.min(c1, 1))), t1: deg(Math.acos(Math.max(c0, -1))), p0, p1: p0 + 360 / PHI_BINS });
 }
 
-const where = ([theta, phi]) => `view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}°`;
+const where = ([theta, phi]) => say("view", { theta, phi });
 
 // Per view: observed, expected, then failed, not unit, not finite and the draw (0 or 1).
-const ROW = 2 * BINS + 4;
-const REDRAW = 1_000_003; // the second draw's seed offset (sampling.REDRAW)
-const DECISIVE = 1e-7; // a first draw this improbable fails without a second (sampling.DECISIVE)
+const row = () => 2 * BINS + 4;
 const SCALE = 6; // pixels per bin side of a histogram picture
 
 /** A (cos θ, φ) histogram as an RGBA picture, θ down, φ across (sampling.histogram_image). */
@@ -280,17 +288,17 @@ function histogramImage(counts, peak) {
 
 /** The grader's three pictures of a chi-square check, at its worst view (or the first). */
 function histogramFigures(check, raw, view) {
-  const start = ROW * view;
+  const start = row() * view;
   const mine = raw.subarray(start, start + BINS);
   const pdf = raw.subarray(start + BINS, start + 2 * BINS);
   const peak = Math.max(...pdf, ...mine, 1);
   const figures = [
-    { title: "your pdf × samples over (cos θ, φ): θ down from the normal, φ across", ...histogramImage(pdf, peak) },
-    { title: "your samples, counted in the same bins", ...histogramImage(mine, peak) },
+    { title: check.captions["your pdf"], ...histogramImage(pdf, peak) },
+    { title: check.captions["your samples"], ...histogramImage(mine, peak) },
   ];
   const solution = solutionValues(check);
   if (solution.length === raw.length) {
-    figures.push({ title: "the solution's pdf, for comparison",
+    figures.push({ title: check.captions["solution's pdf"],
       ...histogramImage(solution.subarray(start + BINS, start + 2 * BINS), peak) });
   }
   return figures;
@@ -302,10 +310,10 @@ function solutionValues(check) {
   return check.solutionValues;
 }
 
-/** Two samplers alike (sampling.same_chi_square): rows of ROW numbers per view. */
+/** Two samplers alike (sampling.same_chi_square): rows of row() numbers per view. */
 function sameChiSquare(a, b, samples) {
   if (a.length !== b.length) return false;
-  for (let start = 0; start < a.length; start += ROW) {
+  for (let start = 0; start < a.length; start += row()) {
     let pdfOff = 0;
     for (let i = BINS; i < 2 * BINS; i++) pdfOff += Math.abs(a[start + i] - b[start + i]);
     if (pdfOff > 0.02 * samples || Math.abs(a[start + 2 * BINS + 1] - b[start + 2 * BINS + 1]) > 0.01 * samples) return false;
@@ -334,7 +342,7 @@ function explainChiSquare(check, exercise, raw) {
   if (expected.length !== raw.length) return "";
   let pdfOff = false;
   const mineOnly = Float64Array.from(raw);
-  for (let start = 0; start < raw.length; start += ROW) {
+  for (let start = 0; start < raw.length; start += row()) {
     let off = 0;
     for (let i = BINS; i < 2 * BINS; i++) {
       off += Math.abs(raw[start + i] - expected[start + i]);
@@ -343,8 +351,8 @@ function explainChiSquare(check, exercise, raw) {
     pdfOff ||= off > 0.02 * samples;
   }
   const samplesLike = sameChiSquare(mineOnly, expected, samples);
-  if (pdfOff && samplesLike) return sentence("your samples are drawn like the solution's: the pdf is what is wrong");
-  if (!pdfOff && !samplesLike) return sentence("your pdf agrees with the solution's: the sampler is what is wrong");
+  if (pdfOff && samplesLike) return sentence(say("pdf_wrong"));
+  if (!pdfOff && !samplesLike) return sentence(say("sampler_wrong"));
   return "";
 }
 
@@ -353,23 +361,17 @@ function explainChiSquare(check, exercise, raw) {
 function chiSquareDraw(panel, check, seed, draw, expectedOf) {
   const samples = check.options.samples;
   const level = 1 - (1 - check.options.alpha) ** (1 / Math.max(check.views.length, 1)); // Šidák
-  const raw = new Float64Array(ROW * check.views.length);
+  const raw = new Float64Array(row() * check.views.length);
   const verdicts = check.views.map((view, index) => {
     const { observed, failed, notUnit, notFinite } = sampleCounts(panel, check, index, seed);
     const expected = expectedOf(index);
     const mass = expected.reduce((s, v) => s + v, 0);
-    raw.set(observed, ROW * index);
-    raw.set(expected, ROW * index + BINS);
-    raw.set([failed, notUnit, notFinite, draw], ROW * index + 2 * BINS);
-    if (notFinite) return [`${where(view)}: ${notFinite} of ${samples} samples are NaN or infinite`, true];
-    if (notUnit > 0.001 * samples) {
-      return [`${where(view)}: ${notUnit} of ${samples} sampled directions are not unit vectors (a direction ` +
-        "built from sin and cos has length 1)", true];
-    }
-    if (mass < 0.5 * samples) {
-      return [`${where(view)}: your pdf integrates to ${(mass / samples).toFixed(3)} over the sphere, so it ` +
-        "cannot describe your samples (see the pdf_integral check)", true];
-    }
+    raw.set(observed, row() * index);
+    raw.set(expected, row() * index + BINS);
+    raw.set([failed, notUnit, notFinite, draw], row() * index + 2 * BINS);
+    if (notFinite) return [say("not_finite", { where: where(view), count: notFinite, samples }), true];
+    if (notUnit > 0.001 * samples) return [say("not_unit", { where: where(view), count: notUnit, samples }), true];
+    if (mass < 0.5 * samples) return [say("no_mass", { where: where(view), mass: mass / samples }), true];
     const { statistic, dof, p } = pearson(observed, expected, failed, samples - mass);
     if (p >= level) return null;
     let off = 0;
@@ -378,9 +380,8 @@ function chiSquareDraw(panel, check, seed, draw, expectedOf) {
       const score = (observed[i] - expected[i]) ** 2 / Math.max(expected[i], 1);
       if (score > worst) [worst, off] = [score, i];
     }
-    return [`${where(view)}: the samples do not follow your pdf (χ² = ${statistic.toFixed(0)} for ${dof} ` +
-      `degrees of freedom, p = ${gFormat(p, 2)} < ${gFormat(level, 2)}); most off: ${binWords(off)} holds ` +
-      `${observed[off]} samples where the pdf expects ${expected[off].toFixed(0)}`, p < DECISIVE];
+    return [say("not_following", { where: where(view), statistic, dof, p, level, bin: binWords(off),
+      observed: observed[off], expected: expected[off] }), p < DECISIVE];
   });
   return { raw, verdicts, level };
 }
@@ -393,27 +394,24 @@ function chiSquare(panel, check, exercise) {
   const expectedOf = (index) =>
     (expected[index] ??= binProbabilities(panel, check.V[index], check.frames[index]).map((v) => v * samples));
   let { raw, verdicts, level } = chiSquareDraw(panel, check, check.seed, 0, expectedOf);
-  let again = "";
+  let again = false;
   if (!verdicts.every((v) => v === null || v[1])) {
     ({ raw, verdicts, level } = chiSquareDraw(panel, check, check.seed + REDRAW, 1, expectedOf));
-    again = "; a second, independent draw failed as the first did";
+    again = true;
   }
   const lines = verdicts.filter((v) => v !== null).map((v) => v[0]);
   if (lines.length) {
     const worstView = verdicts.findIndex((v) => v !== null); // its histograms are shown
     const more = lines.length - 1;
-    const message = lines[0] + (more ? ` (and ${more} more view${more > 1 ? "s" : ""} fail)` : "") + again;
+    let message = more ? say(more > 1 ? "more" : "one_more", { text: lines[0], more }) : lines[0];
+    if (again) message = say("again", { text: message });
     const likely = explainChiSquare(check, exercise, raw);
     return { passed: false, message: likely ? `${message}. ${likely}` : message,
       figures: histogramFigures(check, raw, worstView) };
   }
-  const tested = check.views.map(([t]) => `${t.toFixed(0)}°`).join(", ");
-  return { passed: true, message: `samples follow the pdf at every view (θ = ${tested}; p ≥ ${gFormat(level, 2)})`,
-    figures: histogramFigures(check, raw, 0) };
+  const tested = check.views.map(([theta]) => say("angle", { theta })).join(", ");
+  return { passed: true, message: say("follows", { tested, level }), figures: histogramFigures(check, raw, 0) };
 }
-
-const USABLE = 0.5; // sampling.USABLE
-const Z_INTEGRAL = 5; // sampling.Z_INTEGRAL
 
 /** The pdf integral check (sampling.pdf_integral_raw and judge_pdf_integral): the pdf over
  * the sphere against 1 less the share of the student's own draws that fail. */
@@ -431,15 +429,15 @@ function pdfIntegral(panel, check, exercise) {
   const off = raw.map(([v, f]) => Math.abs(v - (1 - f)));
   const usable = raw.map(([, f]) => 1 - f >= USABLE);
   if (off.every((d, i) => d <= allowed[i]) && usable.every(Boolean)) {
-    return { passed: true, message: `the pdf integrates to ${raw.map(([v]) => v.toFixed(4)).join(", ")} over the ` +
-      `sphere: 1 less the samples that fail (${raw.map(([, f]) => `${(100 * f).toFixed(1)}%`).join(", ")}), as a ` +
-      "density of what your sampler draws should" };
+    const values = raw.map(([value]) => say("integral", { value })).join(", ");
+    const wasted = raw.map(([, f]) => say("share", { percent: 100 * f })).join(", ");
+    return { passed: true, message: say("integrates", { values, wasted }) };
   }
   const worst = usable.every(Boolean) ? off.reduce((b, d, i) => (d - allowed[i] > off[b] - allowed[b] ? i : b), 0)
     : usable.indexOf(false);
   const [theta, phi] = check.views[worst];
   const [value, failed] = raw[worst];
-  const at = `at the view θ = ${theta.toFixed(0)}°, φ = ${phi.toFixed(0)}°`;
+  const said = { at: say("at_view", { theta, phi }), percent: 100 * failed };
   // A stored mistake within half the tolerance everywhere (kinds/pdf_integral nearest).
   let likely = "";
   let best = tolerance / 2;
@@ -449,14 +447,8 @@ function pdfIntegral(panel, check, exercise) {
     if (distance <= best) [likely, best] = [sentence(exercise.hints[key]), distance];
   }
   const tail = likely ? `. ${likely}` : "";
-  if (!usable[worst]) {
-    return { passed: false, message: `${at} ${(100 * failed).toFixed(1)}% of your samples fail (pdf 0 where they ` +
-      `land, or not a unit vector): a sampler must give a usable direction at least ${(100 * USABLE).toFixed(0)}% ` +
-      `of the time${tail}` };
-  }
-  return { passed: false, message: `${at} your pdf integrates to ${value.toFixed(4)} over the sphere, but ` +
-    `${(100 * failed).toFixed(1)}% of your samples fail, so the density of what your sampler draws integrates to ` +
-    `${(1 - failed).toFixed(4)} (allowed ±${allowed[worst].toFixed(3)}): the pdf does not describe the sampler${tail}` };
+  if (!usable[worst]) return { passed: false, message: say("unusable", { ...said, usable: 100 * USABLE }) + tail };
+  return { passed: false, message: say("integral_off", { ...said, value, density: 1 - failed, allowed: allowed[worst] }) + tail };
 }
 
 /** Loads what a check needs from the server before it runs: nothing for these kinds. */
@@ -464,5 +456,6 @@ export async function prepareSampled(check) {}
 
 /** Runs a sampling check on the panel (its values already the check's). */
 export async function runSampled(panel, check, exercise) {
+  useRules(check.rules);
   return check.kind === "chi_square" ? chiSquare(panel, check, exercise) : pdfIntegral(panel, check, exercise);
 }

@@ -1,13 +1,23 @@
 // Spherical harmonics for the page's SH view (views/sh.js), as lab/measured/sh.py computes
-// them: Gauss-Legendre quadrature, real harmonics up to order 16 and the projection of a
-// lobe as an odd function of z; check_sh.mjs and tests/test_web_sh_mirror.py hold the two
-// to the same numbers.
+// them: Gauss-Legendre quadrature, real harmonics up to the view's highest order and the
+// projection of a lobe as an odd function of z; check_sh.mjs and
+// tests/test_web_sh_mirror.py hold the two to the same numbers. The highest order and the
+// grid are lab/views/sh.py's (MAX_ORDER, GRID), sent as the view's page data: useGrid().
 // Why in JavaScript too: the page projects the lobes of models Python never sees (opened or
 // edited files).
 
-export const MAX_ORDER = 16;
-export const GRID = [48, 96]; // Gauss-Legendre nodes in cos θ × uniform φ (sh_view.GRID)
 export const count = (order) => (order + 1) ** 2;
+
+let SHAPE = null; // { maxOrder, grid, norm, odd, projector }: useGrid
+
+const shape = () => {
+  if (!SHAPE) throw new Error("sh.js: no grid yet (useGrid with the sh view's page data)");
+  return SHAPE;
+};
+
+/** The highest order and the quadrature grid (nodes in cos θ × φ) of lab/views/sh.py. */
+export const maxOrder = () => shape().maxOrder;
+export const grid = () => shape().grid;
 
 /** Gauss-Legendre nodes and weights on [-1, 1] (n nodes, ascending), by Newton's method. */
 export function gaussLegendre(n) {
@@ -46,18 +56,30 @@ const lgamma = (n) => { // log((n - 1)!) for whole n >= 1
   return s;
 };
 
-// sqrt((2l + 1) / 4π · (l - m)! / (l + m)!) at l * (MAX_ORDER + 1) + m: the same for every
-// direction, computed once (as sh.real_sh computes it).
-const NORM = new Float64Array((MAX_ORDER + 1) ** 2);
-for (let l = 0; l <= MAX_ORDER; l++) {
-  for (let m = 0; m <= l; m++) {
-    NORM[l * (MAX_ORDER + 1) + m] = Math.sqrt(((2 * l + 1) / (4 * Math.PI)) * Math.exp(lgamma(l - m + 1) - lgamma(l + m + 1)));
+/** Takes the sh view's page data ({max_order, grid}); the tables follow once per grid. */
+export function useGrid({ max_order: top, grid: [nTheta, nPhi] }) {
+  if (SHAPE && SHAPE.maxOrder === top && SHAPE.grid[0] === nTheta && SHAPE.grid[1] === nPhi) return;
+  // sqrt((2l + 1) / 4π · (l - m)! / (l + m)!) at l * (top + 1) + m: the same for every
+  // direction, computed once (as sh.real_sh computes it).
+  const norm = new Float64Array((top + 1) ** 2);
+  for (let l = 0; l <= top; l++) {
+    for (let m = 0; m <= l; m++) {
+      norm[l * (top + 1) + m] = Math.sqrt(((2 * l + 1) / (4 * Math.PI)) * Math.exp(lgamma(l - m + 1) - lgamma(l + m + 1)));
+    }
   }
+  // The harmonics odd in z (l + |m| odd): the only ones the odd extension of a lobe has.
+  const odd = [];
+  for (let index = 0; index < count(top); index++) {
+    const l = Math.floor(Math.sqrt(index));
+    if ((l + Math.abs(index - l * l - l)) % 2 === 1) odd.push(index);
+  }
+  SHAPE = { maxOrder: top, grid: [nTheta, nPhi], norm, odd, projector: null };
 }
 
-/** Real orthonormal harmonics up to `order` (at most MAX_ORDER) at (θ, φ), index l² + l + m
+/** Real orthonormal harmonics up to `order` (at most maxOrder()) at (θ, φ), index l² + l + m
  * (sh.real_sh). */
 export function realSh(order, theta, phi) {
+  const { maxOrder: top, norm } = shape();
   const out = new Float64Array(count(order));
   const x = Math.cos(theta);
   const sine = Math.sqrt(Math.max(1 - x * x, 0));
@@ -76,7 +98,7 @@ export function realSh(order, theta, phi) {
     const c = Math.SQRT2 * Math.cos(m * phi);
     const s = Math.SQRT2 * Math.sin(m * phi);
     for (let l = m; l <= order; l++) {
-      const p = NORM[l * (MAX_ORDER + 1) + m] * P[l * stride + m];
+      const p = norm[l * (top + 1) + m] * P[l * stride + m];
       if (m === 0) out[l * l + l] = p;
       else {
         out[l * l + l + m] = c * p;
@@ -87,29 +109,20 @@ export function realSh(order, theta, phi) {
   return out;
 }
 
-/** The harmonics odd in z (l + |m| odd): the only ones the odd extension of a lobe has. */
-export const ODD = [];
-for (let index = 0; index < count(MAX_ORDER); index++) {
-  const l = Math.floor(Math.sqrt(index));
-  if ((l + Math.abs(index - l * l - l)) % 2 === 1) ODD.push(index);
-}
-
-let projector = null; // the grid and its harmonics: the same for every model and light
-
 /** The quadrature grid on the upper hemisphere (rows of θ, then φ; as sh.hemisphere_grid):
  * directions V (RGBA floats), solid angles, and the harmonics split as they separate,
  * Y_lm(θ, φ) = N_lm P_lm(cos θ) trig(mφ): per row of θ, 2·w·N·P of each odd harmonic (√2
  * folded in for m ≠ 0), per column of φ, cos(mφ) and sin(mφ). */
 export function quadrature() {
-  if (projector) return projector;
-  const [nTheta, nPhi] = GRID;
+  const { maxOrder: top, grid: [nTheta, nPhi], odd: ODD } = shape();
+  if (SHAPE.projector) return SHAPE.projector; // the same for every model and light
   const { x, w } = gaussLegendre(2 * nTheta);
   const n = nTheta * nPhi;
   const V = new Float32Array(4 * n);
   const weight = new Float64Array(n);
   const K = ODD.length;
   const rows = new Float64Array(nTheta * K);
-  const M = MAX_ORDER + 1;
+  const M = top + 1;
   const cos = new Float64Array(nPhi * M);
   const sin = new Float64Array(nPhi * M);
   for (let j = 0; j < nPhi; j++) {
@@ -124,7 +137,7 @@ export function quadrature() {
     const theta = Math.acos(c);
     const solid = (w[nTheta + i] * 2 * Math.PI) / nPhi;
     // The harmonics at φ = 0 give N·P (m >= 0, times √2 for m > 0).
-    const Y = realSh(MAX_ORDER, theta, 0);
+    const Y = realSh(top, theta, 0);
     ODD.forEach((index, o) => {
       const l = Math.floor(Math.sqrt(index));
       const m = index - l * l - l;
@@ -139,21 +152,22 @@ export function quadrature() {
       weight[k] = solid;
     }
   }
-  projector = { V, weight, rows, cos, sin, n, nTheta, nPhi };
-  return projector;
+  SHAPE.projector = { V, weight, rows, cos, sin, n, nTheta, nPhi };
+  return SHAPE.projector;
 }
 
 /** Coefficients of the odd extension of `lobe` (values at the quadrature's nodes), and the
  * relative L2 error over the hemisphere of the series of every order.
  *
  * The errors come from Parseval's identity: the grid integrates products of harmonics up
- * to order 16 exactly, so over the hemisphere the odd harmonics are orthogonal with norm
+ * to the highest order exactly, so over the hemisphere the odd harmonics are orthogonal with norm
  * 1/2 and the series' error is ||g||² - Σ a² / 2 over its coefficients (no sum over the
  * nodes per order; the same as summing (series - g)² there, to rounding). */
 export function analyse(lobe) {
   const { weight, rows, cos, sin, n, nTheta, nPhi } = quadrature();
+  const { maxOrder: top, odd: ODD } = shape();
   const K = ODD.length;
-  const M = MAX_ORDER + 1;
+  const M = top + 1;
   const odd = new Float64Array(K);
   const C = new Float64Array(M);
   const S = new Float64Array(M);
@@ -176,14 +190,14 @@ export function analyse(lobe) {
       odd[o] += rows[i * K + o] * (m >= 0 ? C[m] : S[-m]);
     }
   }
-  const coefficients = new Float64Array(count(MAX_ORDER));
+  const coefficients = new Float64Array(count(top));
   ODD.forEach((index, o) => (coefficients[index] = odd[o]));
   let norm2 = 0;
   for (let k = 0; k < n; k++) norm2 += weight[k] * lobe[k] * lobe[k];
   const norm = Math.max(Math.sqrt(norm2), 1e-300);
   const errors = [];
   let captured = 0;
-  for (let order = 0; order <= MAX_ORDER; order++) {
+  for (let order = 0; order <= top; order++) {
     for (let c = order * order; c < count(order); c++) captured += (coefficients[c] * coefficients[c]) / 2;
     errors.push(Math.sqrt(Math.max(norm2 - captured, 0)) / norm);
   }

@@ -45,6 +45,7 @@ export class LabState {
     this.exerciseList = [];
     this.environments = null; // the IBL view's maps: names and size
     this.measuredCode = ""; // lab/measured/measured.glsl
+    this.measuredTable = null; // how lab/measured/merl.py reads a table (the manifest's)
     this.builtMs = null; // the page built, nothing drawn yet (ms since navigation)
     this.firstRenderMs = null; // the sphere and polar plot of every panel drawn (ms since navigation)
     this.viewsRenderMs = null; // every view in sight drawn, the costly ones coarse

@@ -2,13 +2,11 @@
 // the GPU integrates wedges around the mirror direction, the host sums them.
 import { formatG } from "../header.js";
 import { font } from "../plotscale.js";
-import { el, viewBox } from "../dom.js";
+import { el, setText, viewBox } from "../dom.js";
 
-// theta_i from 0 to 87.5 degrees, samples along each wedge, wedges around the mirror
-// direction: the desktop's full-quality albedo (lab/app/views/albedo.py AlbedoView.FULL).
-export const ALBEDO = { theta0: 0, step: 2.5, count: 36, samples: 192, wedges: 48 };
-// While a slider or the light moves: the desktop's fast albedo.
-export const ALBEDO_FAST = { theta0: 0, step: 85 / 8, count: 9, samples: 32, wedges: 16 };
+// Its quality (θi from theta0 in count steps of step degrees, samples along each of wedges
+// wedges around the mirror direction; fast while a slider or the light moves) is the
+// desktop's, lab/views/albedo.py FULL and FAST, sent as the view's page data.
 
 /** Directional albedo against θi, energy gain (albedo > 1) flagged in red. */
 export class AlbedoView {
@@ -33,7 +31,8 @@ export class AlbedoView {
 
   submit() {
     const lab = this.lab;
-    const a = (this.quality = lab.fast ? ALBEDO_FAST : ALBEDO);
+    const { full, fast } = lab.viewData("albedo");
+    const a = (this.quality = lab.fast ? fast : full);
     this.pass = this.panel.draw("albedo", a.wedges, a.count, {
       u_theta0: (a.theta0 * Math.PI) / 180, u_theta_step: (a.step * Math.PI) / 180,
       u_phi_i: (lab.lights[0].phi * Math.PI) / 180, u_samples: a.samples, u_wedges: a.wedges,
@@ -116,7 +115,7 @@ export class AlbedoView {
       ctx.lineTo(cx + r, cy - r);
       ctx.stroke();
     });
-    this.note.textContent = this.gain ? "energy gain: the albedo exceeds 1 (×), more light leaves than arrives" : "";
+    setText(this.note, this.gain ? "energy gain: the albedo exceeds 1 (×), more light leaves than arrives" : "");
     this.note.classList.toggle("bad", this.gain);
   }
 

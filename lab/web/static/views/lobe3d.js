@@ -3,7 +3,7 @@
 // lab/views/lobe3d.py draws them); every panel on one shared scale; drag (or touch) to
 // orbit, wheel to zoom. The marks (horizon, N, L, R, a delta's spike) are drawn on top.
 import { ModelError, formatG } from "../header.js";
-import { el, viewBox } from "../dom.js";
+import { cssWidth, el, setText, viewBox } from "../dom.js";
 import { direction } from "../geometry.js";
 import { VERSION_LINES, assembleFragment, finishProgram, floatTexture, startProgram, translateLog } from "../assemble.js";
 
@@ -426,7 +426,7 @@ export class LobeView {
     line([0, -1, 0], [0, 1, 0], [0.45, 0.45, 0.5], 1);
     const { theta, phi } = lab.lights[0];
     const ends = { N: direction(0, 0), L: direction(theta, phi), R: direction(theta, phi + 180) };
-    const font = Math.round((12 * width) / (this.canvas.clientWidth || width));
+    const font = Math.round((12 * width) / (cssWidth(this.canvas) || width));
     ctx.font = `${font}px system-ui, sans-serif`;
     ctx.textAlign = "center";
     ctx.textBaseline = "middle";
@@ -448,7 +448,7 @@ export class LobeView {
     const scale = lab.settings.polar_log ? `, log over ${this.lab.constants.PLOT_DECADES} decades` : "";
     ctx.fillText(`${what}${scale}`, 4, font + 2);
     ctx.fillText(`radius 1: ${formatG(Number(this.scale.toPrecision(3)))} sr⁻¹`, 4, 2 * font + 4);
-    this.note.textContent = "drag to orbit; wheel or pinch to zoom" + (this.spike > 0 ? `; the line along R: the δ spike, ρ = ${formatG(Number(this.spike.toPrecision(3)))}` : "");
+    setText(this.note, "drag to orbit; wheel or pinch to zoom" + (this.spike > 0 ? `; the line along R: the δ spike, ρ = ${formatG(Number(this.spike.toPrecision(3)))}` : ""));
   }
 
   /** The float picture (display values over the background, row 0 at the top), its scale,

@@ -1,13 +1,13 @@
-// The spherical-harmonics view, as the desktop's (lab/app/sh_view.py with lab/measured/sh.py):
+// The spherical-harmonics view, as the desktop's (lab/app/views/sh.py with lab/measured/sh.py):
 // the lobe g(wo) = fr(wi, wo) cos θo for light 1, from the model's GLSL on a quadrature grid
-// (the probe template), projected on real harmonics up to order 16 as an odd function of z
-// (../sh.js). Left: g and its series at order L in the plane of incidence; right: the
+// (the probe template), projected on real harmonics up to the highest order (lab/views/sh.py
+// MAX_ORDER) as an odd function of z (../sh.js). Left: g and its series at order L in the plane of incidence; right: the
 // relative L2 error over the hemisphere against the order.
 import { formatG } from "../header.js";
 import { clearedPlot } from "../plotscale.js";
-import { el, viewBox } from "../dom.js";
+import { el, setText, viewBox } from "../dom.js";
 import { direction } from "../geometry.js";
-import { GRID, MAX_ORDER, analyse, count, quadrature, realSh } from "../sh.js";
+import { analyse, count, grid, maxOrder, quadrature, realSh, useGrid } from "../sh.js";
 
 const SERIES = "#ffd200";
 
@@ -15,17 +15,19 @@ export class SHView {
   constructor(panel) {
     this.panel = panel;
     this.lab = panel.lab;
+    useGrid(this.lab.viewData("sh")); // lab/views/sh.py's highest order and grid
+    const top = maxOrder();
     this.canvas = el("canvas", { class: "sh", width: 384, height: 220 });
     this.root = viewBox(this.canvas, "spherical harmonics", () => `${panel.name}_sh.png`);
-    this.order = el("input", { type: "number", min: 0, max: MAX_ORDER, step: 1, value: this.lab.settings.sh_order });
+    this.order = el("input", { type: "number", min: 0, max: top, step: 1, value: this.lab.settings.sh_order });
     this.order.addEventListener("input", () => {
       const value = Math.round(Number(this.order.value));
-      if (!(value >= 0 && value <= MAX_ORDER)) return;
+      if (!(value >= 0 && value <= top)) return;
       this.lab.set("sh_order", value);
       this.lab.requestRender();
     });
     this.note = el("div", { class: "view-note" });
-    this.root.append(el("label", { class: "group", title: `the order L of the series (0 to ${MAX_ORDER}): (L + 1)² coefficients` },
+    this.root.append(el("label", { class: "group", title: `the order L of the series (0 to ${top}): (L + 1)² coefficients` },
       "order L ", this.order), this.note);
     this.planeBasis = new Map(); // φi -> the harmonics in the plane of incidence
   }
@@ -36,16 +38,21 @@ export class SHView {
     this.process();
   }
 
-  /** Queues the probe of the lobe on the quadrature grid, unless the series is cached. */
+  /** Queues the probe of the lobe on the quadrature grid, unless the series is cached. While
+   * the hand moves (lab.fast) the projection waits, as on the desktop: the lobe in the plane
+   * follows the slider, the series and its errors come when it stops (the probe and the
+   * projection are most of this view's frame, and more than the sphere's). A model's first
+   * series never waits (the page's first, coarse draw of its views shows it). */
   submit() {
     const lab = this.lab;
-    this.order.value = lab.settings.sh_order;
+    if (Number(this.order.value) !== lab.settings.sh_order) this.order.value = lab.settings.sh_order;
     const light = lab.lights[0];
     this.pass = null;
     this.key = JSON.stringify([this.panel.values, light.theta, light.phi]);
     if (this.panel.model.delta || (this.cache?.model === this.panel.model && this.cache.key === this.key)) return;
+    if (lab.fast && this.cache?.model === this.panel.model) return;
     const { V, n } = quadrature();
-    const [nTheta, nPhi] = GRID;
+    const [nTheta, nPhi] = grid();
     const Ld = direction(light.theta, light.phi);
     const lightL = () => {
       const L = new Float32Array(4 * n);
@@ -80,7 +87,8 @@ export class SHView {
       this.cache = { model: this.panel.model, key: this.key, ...analyse(lobe) };
       this.probed = null;
     }
-    this.data = this.cache;
+    // Not the cached series of other values: while the hand moves none (cleared, not stale).
+    this.data = this.cache?.model === this.panel.model && this.cache.key === this.key ? this.cache : null;
     this.draw();
   }
 
@@ -92,7 +100,7 @@ export class SHView {
       const rows = [];
       for (let t = -90; t <= 90; t++) {
         const [x, y, z] = direction(Math.abs(t), (t >= 0 ? phiDeg + 180 : phiDeg) + phiO);
-        rows.push(realSh(MAX_ORDER, Math.acos(Math.min(Math.max(z, -1), 1)), Math.atan2(y, x)));
+        rows.push(realSh(maxOrder(), Math.acos(Math.min(Math.max(z, -1), 1)), Math.atan2(y, x)));
       }
       this.planeBasis.clear();
       this.planeBasis.set(key, rows);
@@ -105,9 +113,9 @@ export class SHView {
     const C = lab.constants;
     const canvas = this.canvas;
     const { ctx, px } = clearedPlot(canvas);
-    if (!this.data) {
+    if (this.panel.model.delta) {
       ctx.fillText("an ideal mirror has no finite lobe to expand", 4, 2 * px);
-      this.note.textContent = "";
+      setText(this.note, "");
       return;
     }
     const order = lab.settings.sh_order;
@@ -117,12 +125,11 @@ export class SHView {
     const lum = (i) => (C.LUMA[0] * f[4 * i] + C.LUMA[1] * f[4 * i + 1] + C.LUMA[2] * f[4 * i + 2]) * Math.cos(((i - 90) * Math.PI) / 180);
     const plane = Array.from({ length: 181 }, (_, i) => (Number.isFinite(lum(i)) ? lum(i) : 0));
     const peak = Math.max(1e-9, ...plane.filter((_, i) => Math.abs(i - 90) <= C.GRAZING_DEG));
-    const basis = this.plane(light.phi, lab.settings.phi_o);
-    const series = basis.map((Y) => {
+    const series = this.data ? this.plane(light.phi, lab.settings.phi_o).map((Y) => {
       let s = 0;
       for (let c = 0; c < count(order); c++) s += Y[c] * this.data.coefficients[c];
       return s;
-    });
+    }) : null;
     this.series = series;
     this.planeValues = plane;
     // Left 3/5: the lobe relative to its peak, y from -0.35 to 1.15 as on the desktop.
@@ -164,9 +171,24 @@ export class SHView {
       ctx.setLineDash([]);
     };
     curve(plane, this.panel.color, []);
-    curve(series, SERIES, [6, 4]);
     ctx.fillStyle = this.panel.color;
     ctx.fillText("original (GLSL)", left + 4, top + 1.1 * px);
+    if (!series) {
+      const wait = "series and error follow when the slider stops";
+      ctx.fillStyle = "#bbb";
+      let line = "";
+      let at = top + 1.1 * px;
+      for (const word of wait.split(" ")) { // wrapped to the right part's width
+        if (line && ctx.measureText(`${line} ${word}`).width > canvas.width - split - 8) {
+          ctx.fillText(line, split + 4, at);
+          [line, at] = [word, at + 1.1 * px];
+        } else line = line ? `${line} ${word}` : word;
+      }
+      ctx.fillText(line, split + 4, at);
+      setText(this.note, wait);
+      return;
+    }
+    curve(series, SERIES, [6, 4]);
     ctx.fillStyle = SERIES;
     ctx.fillText(`SH series, L = ${order}`, left + 4, top + 2.2 * px);
     // Right: the error against the order, log scale.
@@ -174,7 +196,7 @@ export class SHView {
     const low = Math.floor(Math.log10(Math.min(...errors)));
     left = split + 3.2 * px;
     right = canvas.width - 6;
-    const ex = (k) => left + ((right - left) * (k + 0.5)) / (MAX_ORDER + 1);
+    const ex = (k) => left + ((right - left) * (k + 0.5)) / (maxOrder() + 1);
     const ey = (e) => top + ((bottom - top) * (0.2 - Math.log10(e))) / (0.2 - low);
     ctx.fillStyle = "#bbb";
     ctx.fillText("relative L2 error", split + 4, px);
@@ -184,7 +206,7 @@ export class SHView {
     const step = Math.max(1, Math.ceil(-low / 3));
     for (let k = 0; k >= low; k -= step) ctx.fillText(k ? `1e${k}` : "1", left - 3, ey(10 ** k) + 0.35 * px);
     ctx.textAlign = "center";
-    for (const k of [0, 8, 16]) ctx.fillText(String(k), ex(k), bottom + 1.1 * px);
+    for (const k of [0, Math.round(maxOrder() / 2), maxOrder()]) ctx.fillText(String(k), ex(k), bottom + 1.1 * px);
     ctx.fillText("order L", (left + right) / 2, bottom + 2.2 * px);
     ctx.textAlign = "left";
     ctx.strokeStyle = SERIES;
@@ -198,10 +220,10 @@ export class SHView {
     ctx.beginPath();
     errors.forEach((e, k) => ctx[k ? "lineTo" : "moveTo"](ex(k), ey(e)));
     ctx.stroke();
-    this.note.textContent = `L = ${order}: ${count(order)} coefficients, error ${formatG(Number((100 * this.data.errors[order]).toPrecision(2)))} %`;
+    setText(this.note, `L = ${order}: ${count(order)} coefficients, error ${formatG(Number((100 * this.data.errors[order]).toPrecision(2)))} %`);
   }
 
-  /** Coefficients (luminance lobe), errors by order 0..16, and the plane's curves. */
+  /** Coefficients (luminance lobe), errors by order 0 to the highest, and the plane's curves. */
   read() {
     if (!this.data) return { coefficients: [], errors: [], plane: [], series: [] };
     return { coefficients: Array.from(this.data.coefficients), errors: this.data.errors, plane: this.planeValues, series: this.series };

@@ -3,7 +3,7 @@
 // MICROFACET_TERMS through shaders/views/terms.glsl.
 import { formatG } from "../header.js";
 import { clearedPlot } from "../plotscale.js";
-import { el, viewBox } from "../dom.js";
+import { el, setText, viewBox } from "../dom.js";
 import { direction } from "../geometry.js";
 
 const TERMS_FUNCTION = /\bvoid\s+MICROFACET_TERMS\s*\(/;
@@ -90,9 +90,9 @@ export class TermsView {
       // A measured table cannot define them (as lab/measured/model.py's no_terms_reason).
       const table = Boolean(this.panel.model.table);
       ctx.fillText(table ? "a measured table" : "not written as a microfacet model", 4, 3.3 * px);
-      this.note.textContent = table
+      setText(this.note, table
         ? `${this.panel.name}: a measured table has no D, G and F of its own: fit a microfacet model to it (brdf-lab fit) and view the fit's terms`
-        : `${this.panel.name} does not define MICROFACET_TERMS (see shaders/README.md)`;
+        : `${this.panel.name} does not define MICROFACET_TERMS (see shaders/README.md)`);
       return;
     }
     const t = this.terms;
@@ -166,8 +166,8 @@ export class TermsView {
     plot(2, same ? "F" : "F (R, G, B)", "θd: V to H", 0, 90, t.theta, same ? t.F.map((f) => f[0]) : t.F, unit,
       [[0, "0"], [1, "1"]], same ? [[color, []]] : [["#ff5050", []], ["#50d050", [5, 3]], ["#6090ff", [2, 3]]]);
     const peak = Math.max(...finite);
-    this.note.textContent = `D peaks at ${formatG(Number(peak.toPrecision(3)))} sr⁻¹ (G = 1 means no shadowing or masking); ` +
-      `F(0°) = ${t.F[0].map((c) => formatG(Number(c.toPrecision(3)))).join(", ")}`;
+    setText(this.note, `D peaks at ${formatG(Number(peak.toPrecision(3)))} sr⁻¹ (G = 1 means no shadowing or masking); ` +
+      `F(0°) = ${t.F[0].map((c) => formatG(Number(c.toPrecision(3)))).join(", ")}`);
   }
 
   /** The terms ({theta, D, theta_o, G, F}), or null for a model without them. */
