@@ -333,6 +333,22 @@ def test_ibl_bench_prints_its_figures(tmp_path, capsys):
         assert image.size[0] > 400
 
 
+def test_ibl_bench_table_prints_the_table_samplers_figures(capsys):
+    """A small `ibl-bench --table`: samples, samples/s and time to 1% of GGX and its .brdf
+    twin, and the ratios twin / analytic, for both alphas, skies and strategies."""
+    from lab.ibl import bench
+
+    out = bench.table_run(size=16, reference_samples=256, max_samples=64, rate_size=64, rounds=1)
+    text = capsys.readouterr().out
+    assert "table built in" in text and "time to 1%" in text
+    for alpha in (0.1, 0.5):
+        for env_name in ("furnace", "sky"):
+            for strategy in ("brdf", "auto"):
+                assert out[("ratio", alpha, env_name, strategy)] > 0
+                n, rate, seconds = out[(alpha, env_name, "ggx.brdf", strategy)]
+                assert n >= 1 and rate > 0 and seconds > 0
+
+
 def test_ibl_bench_names_a_wrong_against_folder(tmp_path, capsys):
     from lab.cli import main
 

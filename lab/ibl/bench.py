@@ -285,6 +285,73 @@ def targets(figures: dict, envs: dict, quick: bool) -> dict:
     return out
 
 
+def table_run(
+    size: int = 64,
+    reference_samples: int = 8192,
+    max_samples: int = 4096,
+    rate_size: int = RATE_SIZE,
+    rounds: int = 5,
+) -> dict:
+    """`ibl-bench --table`: the data-driven sampler's target alone. GGX alpha 0.1 and 0.5
+    against the .brdf twin, under the furnace and the sky, BRDF sampling and `auto` on Sobol'
+    points: samples to 1% (independent of load), samples/s (the best of 5 rounds over all
+    programs, so a burst of others' load spoils a round, not one side of a ratio), their
+    ratios twin / analytic, and the table's build time."""
+    from lab.brdf_explorer import read_brdf
+
+    renderer = IBLRenderer()
+    models = {"ggx": "ggx", "ggx.brdf": read_brdf(TWIN)}
+    envs = environments(False)
+    print(f"renderer: {renderer.ctx.info['GL_RENDERER']}")
+    samples: dict = {}
+    for alpha in (0.1, 0.5):
+        values = {"alpha": alpha}
+        build = renderer.tables.get(renderer, models["ggx.brdf"], values).seconds
+        print(f"ggx a={alpha}: table built in {build * 1e3:.0f} ms")
+        for env_name, env in envs.items():
+            for label, model in models.items():
+                reference, own = reference_image(
+                    renderer, model, values, env, size, reference_samples
+                )
+                for strategy in ("brdf", "auto"):
+                    samples[(alpha, env_name, label, strategy)] = converge(
+                        renderer, model, values, env, strategy, reference, size, 600.0,
+                        TARGET, own, "sobol", max_samples,
+                    ).samples_to()  # fmt: skip
+    rates: dict = {}
+    for _ in range(rounds):
+        for alpha, env_name, label, strategy in samples:
+            env = envs[env_name]
+            key = (alpha, env_name, label, chosen_strategy(strategy, env))
+            rate = throughput(
+                renderer, models[label], {"alpha": alpha}, env, key[3], "sobol", rate_size,
+                16, 1,
+            )  # fmt: skip
+            rates[key] = max(rates.get(key, 0.0), rate)
+    out: dict = {}
+    for (alpha, env_name, label, strategy), (n, measured) in samples.items():
+        rate = rates[(alpha, env_name, label, chosen_strategy(strategy, envs[env_name]))]
+        seconds = n * math.pi / 4.0 * rate_size**2 / rate
+        out[(alpha, env_name, label, strategy)] = (n, rate, seconds)
+        print(
+            f"  a={alpha} {env_name:8s} {label:9s} {strategy:5s} {n:7.0f} spp"
+            f"{' ' if measured else '~'} {rate / 1e6:6.2f} M/s {fmt_time(seconds, measured)}"
+        )
+    print(f"twin / analytic (time at {rate_size}x{rate_size}, passes of 16; <= 2 is the target):")
+    for alpha in (0.1, 0.5):
+        for env_name in envs:
+            for strategy in ("brdf", "auto"):
+                (na, ra, ta), (nt, rt, tt) = (
+                    out[(alpha, env_name, m, strategy)] for m in ("ggx", "ggx.brdf")
+                )
+                out[("ratio", alpha, env_name, strategy)] = tt / ta
+                print(
+                    f"  a={alpha} {env_name:8s} {strategy:5s} samples x{nt / na:.2f}, "
+                    f"time per sample x{ra / rt:.2f}, time to 1% x{tt / ta:.2f}"
+                )
+    return out
+
+
 def convergence_plot(runs: dict, path) -> None:
     """Log-log error against samples for the first case and environment, random dashed."""
     import matplotlib

@@ -1,6 +1,6 @@
 // View (lab/ibl/table.py): the mass of f_r cos in each cell of the data-driven sampler's
-// table (terms/sampling_table.glsl), one texel per cell: column = phi cell, row = view
-// angle * TABLE_U + u cell. SUB x SUB half vectors uniform over the cell's solid angle
+// table (terms/sampling_table.glsl), one texel per cell: column = phi cell (from -pi),
+// row = view angle * TABLE_U + u cell. SUB x SUB half vectors uniform over the cell's solid angle
 // give the mean of luma(f_r) cos(theta_L) 4 V.H (the Jacobian from H to L), times the
 // cell's solid angle: the integral of f_r cos over the directions L the cell maps to.
 uniform int u_views;
@@ -29,7 +29,7 @@ void main() {
             float w = mix(w0, w1, (float(a) + 0.5) / float(SUB));
             float cos_h = 1.0 - w;
             float sin_h = sqrt(max(w * (2.0 - w), 0.0));
-            float phi = (float(texel.x) + (float(t) + 0.5) / float(SUB)) * dphi;
+            float phi = (float(texel.x) + (float(t) + 0.5) / float(SUB)) * dphi - PI;
             vec3 H = vec3(sin_h * cos(phi), sin_h * sin(phi), cos_h);
             float VoH = dot(V, H);
             vec3 L = 2.0 * VoH * H - V;
