@@ -322,7 +322,7 @@ export class IblView {
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
     const gain = this.peak > 1.01 ? ` · ENERGY GAIN (red): a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
     const chosen = chosenStrategy(IBL.strategy, IBL.environment, this.lab.environments);
-    const runs = IBL.strategy === "auto" ? ` (${STRATEGY_TITLES[chosen]} here)` : "";
+    const runs = IBL.strategy === "auto" ? `, here ${STRATEGY_TITLES[chosen]}` : "";
     const numbers = IBL.sobol ? "Sobol'" : "random";
     const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}${runs} · ${numbers}` +
       (note ? ` · ${note}` : "") + gain;
