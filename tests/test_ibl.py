@@ -301,6 +301,19 @@ def test_cli_render_ibl(tmp_path, capsys):
     assert code == 0 and "no BRDF sampler" in capsys.readouterr().out
 
 
+def test_cli_render_ibl_defaults_to_auto(tmp_path, capsys):
+    """`render --view ibl` without --strategy draws with 'auto', as the app and the page do,
+    and says what auto ran under each map: BRDF sampling in the furnace, MIS under the sky."""
+    from lab.cli import main
+
+    out = tmp_path / "auto.png"
+    for env, ran in (("furnace", "BRDF importance"), ("sky", "MIS, power heuristic")):
+        argv = ["render", "ggx", "--view", "ibl", "--env", env, "--samples", "4"]
+        assert main([*argv, "--size", "32", "-o", str(out)]) == 0
+        text = capsys.readouterr().out
+        assert f"auto: BRDF under uniform light, else MIS (power) (here {ran})" in text, text
+
+
 @pytest.mark.parametrize("name", model_names())
 def test_every_model_compiles_in_the_ibl_views(ibl, name):
     """Models with and without a sampler, every enum choice, all three IBL views."""
