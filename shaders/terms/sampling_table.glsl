@@ -20,9 +20,9 @@ uniform sampler2D u_table_marginal;  // ((TABLE_GUIDES + 1) TABLE_U, TABLE_VIEWS
 uniform sampler2D u_table_conditional;  // ((TABLE_GUIDES + 1) TABLE_PHI, TABLE_VIEWS TABLE_U)
 const bool HAS_SAMPLER = true;
 const int TABLE_VIEWS = 32;
-const int TABLE_U = 48;
-const int TABLE_PHI = 48;
-const int TABLE_GUIDES = 4;  // guide texels per cell
+const int TABLE_U = 64;
+const int TABLE_PHI = 32;
+const int TABLE_GUIDES = 2;  // guide texels per cell
 
 // The last direction SAMPLE_BRDF drew from the table and its pdf: PDF_BRDF of that
 // direction (asked for next) is then known without finding its cell again.
