@@ -353,13 +353,14 @@ def test_ibl_bench_table_prints_the_table_samplers_figures(capsys):
 
     out = bench.table_run(size=16, reference_samples=256, max_samples=64, rate_size=64, rounds=1)
     text = capsys.readouterr().out
-    assert "table built in" in text and "time to 1%" in text
+    assert "table built in" in text and "time to 1%" in text and "by CPU time" in text
     for alpha in (0.1, 0.5):
         for env_name in ("furnace", "sky"):
             for strategy in ("brdf", "auto"):
                 assert out[("ratio", alpha, env_name, strategy)] > 0
-                n, rate, seconds = out[(alpha, env_name, "ggx.brdf", strategy)]
-                assert n >= 1 and rate > 0 and seconds > 0
+                assert out[("cpu ratio", alpha, env_name, strategy)] > 0
+                n, rate, seconds, cpu = out[(alpha, env_name, "ggx.brdf", strategy)]
+                assert n >= 1 and rate > 0 and seconds > 0 and 0 < cpu < 1e-5
 
 
 def test_ibl_bench_names_a_wrong_against_folder(tmp_path, capsys):
