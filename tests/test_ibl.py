@@ -301,6 +301,19 @@ def test_cli_render_ibl(tmp_path, capsys):
     assert code == 0 and "no BRDF sampler" in capsys.readouterr().out
 
 
+def test_cli_render_ibl_defaults_to_auto(tmp_path, capsys):
+    """`render --view ibl` without --strategy draws with 'auto', as the app and the page do,
+    and says what auto ran under each map: BRDF sampling in the furnace, MIS under the sky."""
+    from lab.cli import main
+
+    out = tmp_path / "auto.png"
+    for env, ran in (("furnace", "BRDF importance"), ("sky", "MIS, power heuristic")):
+        argv = ["render", "ggx", "--view", "ibl", "--env", env, "--samples", "4"]
+        assert main([*argv, "--size", "32", "-o", str(out)]) == 0
+        text = capsys.readouterr().out
+        assert f"auto: BRDF under uniform light, else MIS (power) (here {ran})" in text, text
+
+
 @pytest.mark.parametrize("name", model_names())
 def test_every_model_compiles_in_the_ibl_views(ibl, name):
     """Models with and without a sampler, every enum choice, all three IBL views."""
@@ -331,6 +344,23 @@ def test_ibl_bench_prints_its_figures(tmp_path, capsys):
     assert "best single strategy" in text
     with Image.open(plot) as image:
         assert image.size[0] > 400
+
+
+def test_ibl_bench_table_prints_the_table_samplers_figures(capsys):
+    """A small `ibl-bench --table`: samples, samples/s and time to 1% of GGX and its .brdf
+    twin, and the ratios twin / analytic, for both alphas, skies and strategies."""
+    from lab.ibl import bench
+
+    out = bench.table_run(size=16, reference_samples=256, max_samples=64, rate_size=64, rounds=1)
+    text = capsys.readouterr().out
+    assert "table built in" in text and "time to 1%" in text and "by CPU time" in text
+    for alpha in (0.1, 0.5):
+        for env_name in ("furnace", "sky"):
+            for strategy in ("brdf", "auto"):
+                assert out[("ratio", alpha, env_name, strategy)] > 0
+                assert out[("cpu ratio", alpha, env_name, strategy)] > 0
+                n, rate, seconds, cpu = out[(alpha, env_name, "ggx.brdf", strategy)]
+                assert n >= 1 and rate > 0 and seconds > 0 and 0 < cpu < 1e-5
 
 
 def test_ibl_bench_names_a_wrong_against_folder(tmp_path, capsys):

@@ -4,6 +4,7 @@ energy-gain flag, the convergence plot; screenshots in tests/output."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from qtapp import floating_view
 
 from lab.ibl import environments
@@ -15,7 +16,7 @@ def ibl_view(qtbot, window):
 
 
 def wait_samples(qtbot, view, count):
-    qtbot.waitUntil(lambda: view.runs and view.runs[0].samples >= count, timeout=60000)
+    qtbot.waitUntil(lambda: bool(view.runs) and view.runs[0].samples >= count, timeout=60000)
 
 
 def test_ibl_view_converges_side_by_side(qtbot, window, output_dir):
@@ -131,3 +132,41 @@ def test_ibl_view_refines_past_256_until_the_error_target(qtbot, window):
     qtbot.waitUntil(lambda: view.stopped is not None, timeout=60000)
     assert view.stopped.startswith("time budget of 10 s spent")
     assert "> target 0.25%" in view.status.text()
+
+
+@pytest.mark.parametrize("room", [True, False])
+def test_the_ibl_view_waits_as_a_tab_behind_the_spheres(qtbot, app_renderer, monkeypatch, room):
+    """Where the screen has room for a tab bar, the IBL view starts open as a tab behind the
+    lit spheres: its tab names it, it runs no pass while behind, and brought to the front it
+    refines and its row grows to its share; on a screen without room it starts closed."""
+    from PyQt6.QtWidgets import QTabBar
+
+    from lab.app import layouts
+    from lab.app.window import MainWindow
+
+    monkeypatch.setattr(layouts, "ROOM_FOR_TABS", 0 if room else 100_000)
+    window = MainWindow(app_renderer)
+    qtbot.addWidget(window)
+    window.resize(1800, 1000)  # room for the IBL view's share of the height
+    window.show()
+    qtbot.waitExposed(window)
+    window.settle()
+    dock, view = window.docks["ibl"], window.view("ibl")
+    assert dock.isHidden() != room
+    assert dock.toggleViewAction().isChecked() == room
+    if not room:
+        return
+    assert window.docks["sphere"] in window.tabifiedDockWidgets(dock)
+    assert window.view("sphere").is_shown() and not view.is_shown()
+    bars = [bar for bar in window.findChildren(QTabBar) if bar.isVisible()]
+    titles = [bar.tabText(i) for bar in bars for i in range(bar.count())]
+    assert "Image-based lighting" in titles or "IBL" in titles, titles
+    window.lab.add(load_model("ggx"), {"alpha": 0.2})
+    window.settle()
+    qtbot.wait(300)
+    assert not view.runs or view.runs[0].samples == 0  # no pass while behind
+    row = window.docks["sphere"].height()
+    dock.raise_()
+    qtbot.waitUntil(view.is_shown)
+    wait_samples(qtbot, view, 4)
+    qtbot.waitUntil(lambda: dock.height() > row + 20)  # the IBL view's share of the height

@@ -34,17 +34,26 @@ def ibl(ctx):
     return IBLRenderer(ctx)
 
 
-def web_ibl(page, model: str, values: dict, environment: str, strategy: str, samples: int):
+def web_ibl(
+    page,
+    model: str,
+    values: dict,
+    environment: str,
+    strategy: str,
+    samples: int,
+    sequence: str = "random",
+):
     """The page's IBL mean after `samples` per pixel: (SIZE, SIZE, 4), row 0 at the top."""
     page.evaluate(
-        """async ([model, values, environment, strategy]) => {
+        """async ([model, values, environment, strategy, sequence]) => {
             const specs = brdfLab.state.specs;
             brdfLab.setSettings({ ibl_env: specs.ibl_env.choices.indexOf(environment),
-              ibl_strategy: specs.ibl_strategy.choices.indexOf(strategy), ibl_rotation: 0 });
+              ibl_strategy: specs.ibl_strategy.choices.indexOf(strategy), ibl_rotation: 0,
+              ibl_sequence: sequence === "sobol" ? 1 : 0 });
             brdfLab.setModel(0, model, values);
             brdfLab.panel(0).extra.ibl.restart();
         }""",
-        [model, values, environment, strategy],
+        [model, values, environment, strategy, sequence],
     )
     got = page.evaluate(f"brdfLab.panel(0).extra.ibl.converge({samples})")
     assert got == samples
@@ -52,6 +61,24 @@ def web_ibl(page, model: str, values: dict, environment: str, strategy: str, sam
     assert out["samples"] == samples
     data = np.frombuffer(base64.b64decode(out["data"]), dtype=np.float32)
     return data.reshape(out["height"], out["width"], 4)
+
+
+def test_the_page_starts_with_auto_on_sobol_points(page):
+    """A fresh page's IBL view runs the desktop's defaults: 'auto' (MIS under the sky, BRDF
+    sampling in the furnace, as lab.ibl.integrator.chosen_strategy resolves it) on each
+    pixel's Sobol' sequence, and says so."""
+    view = "brdfLab.panel(0).extra.ibl"
+    assert page.evaluate(f"{view}.strategyBox.value") == "auto"
+    assert page.evaluate(f"{view}.sequenceBox.value") == "Sobol'"
+    page.wait_for_function(f"{view}.samples > 0")
+    status = page.evaluate(f"{view}.status.textContent")
+    assert "auto" in status and ", here MIS, power heuristic" in status and "Sobol'" in status
+    page.evaluate(
+        """() => { const box = brdfLab.panel(0).extra.ibl.envBox; box.value = 'furnace';
+          box.dispatchEvent(new Event('change')); }"""
+    )
+    page.wait_for_function(f"{view}.status.textContent.includes(', here BRDF importance')")
+    assert page.errors == []
 
 
 # Physically based models with an analytic sampler (their furnace render converges fast).
@@ -93,17 +120,30 @@ def test_unnormalised_phong_gains_energy_in_the_furnace(page, output_dir):
     page.locator("#panels > .panel").first.screenshot(path=output_dir / "web_ibl_furnace_gain.png")
 
 
-@pytest.mark.parametrize("strategy", ["cosine", "environment", "brdf", "mis_power"])
-def test_converged_image_agrees_with_the_desktop(page, ibl, strategy):
-    """GGX under the sky: the page's render and the EGL render (same template, seeds and
-    sample count) differ no more than two EGL renders with different seeds do (the
+@pytest.mark.parametrize(
+    "strategy,sequence,environment",
+    [
+        ("cosine", "random", "sky"),
+        ("environment", "random", "sky"),
+        ("brdf", "random", "sky"),
+        ("mis_power", "random", "sky"),
+        ("auto", "sobol", "sky"),
+        ("auto", "sobol", "studio"),
+        ("brdf", "sobol", "sky"),
+    ],
+)
+def test_converged_image_agrees_with_the_desktop(page, ibl, strategy, sequence, environment):
+    """GGX: the page's render and the EGL render (same template, strategy, sequence, seeds
+    and sample count) differ no more than two EGL renders with different seeds do (the
     rasterizers' sin/cos differ, so their sample streams part ways: the Monte Carlo noise)."""
     values = {"alpha": 0.3}
     samples = 64
-    web = web_ibl(page, "ggx", values, "sky", strategy, samples)
-    env = Environment(procedural("sky", DEFAULT_SIZE), "sky")
-    desktop = render("ggx", values, env, strategy, samples, SIZE, renderer=ibl)
-    other = render("ggx", values, env, strategy, samples, SIZE, seed=1, renderer=ibl)
+    web = web_ibl(page, "ggx", values, environment, strategy, samples, sequence)
+    env = Environment(procedural(environment, DEFAULT_SIZE), environment)
+    desktop = render("ggx", values, env, strategy, samples, SIZE, renderer=ibl, sequence=sequence)
+    other = render(
+        "ggx", values, env, strategy, samples, SIZE, seed=1, renderer=ibl, sequence=sequence
+    )
     _, mask = sphere_normals(SIZE)
     lum = lambda im: im[..., :3][mask] @ np.array(LUMA)  # noqa: E731
     noise = np.sqrt(np.mean((lum(other) - lum(desktop)) ** 2))

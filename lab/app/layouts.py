@@ -27,6 +27,9 @@ DOCK_AREAS = {
 PRESENTER_SCALE = 1.6  # widget text when presenting, against the desktop's
 CONTROLS_MIN = 300  # the controls' narrowest: a colour field, its swatch and reset button
 NARROW = 1200  # a screen narrower than this fits two views in a row beside the controls
+# A screen at least this tall keeps a heavy view (spec.tab_of) open as a tab behind its
+# owner from the start, where its tab names it (its tab bar takes some 25 px of the row).
+ROOM_FOR_TABS = 700
 
 
 def later(win: QWidget, ms: int, run) -> None:
@@ -76,6 +79,19 @@ def pin_width(win: QMainWindow, dock: QDockWidget, width: int) -> None:
         dock.setMaximumWidth(width if win.presenting else QWIDGETSIZE_MAX)
 
     later(dock, 0, release)
+
+
+def room_for_tabs(win: QWidget) -> bool:
+    """Whether the window's screen has room for the tab bar of a heavy view's tab."""
+    return screen_room(win).height() >= ROOM_FOR_TABS
+
+
+def in_front(win: QMainWindow, dock: QDockWidget) -> bool:
+    """Whether an open dock shows: alone, or the tab in front of its group (a tab behind
+    is "visible" to Qt, but nothing of it is on screen)."""
+    if dock.isHidden():
+        return False
+    return not win.tabifiedDockWidgets(dock) or not dock.widget().visibleRegion().isEmpty()
 
 
 def place_desk(win: QMainWindow) -> None:
@@ -147,15 +163,16 @@ def fit_docks(win: QMainWindow) -> None:
     if not rows:
         return
     dock = {spec.name: win.docks[spec.name] for row in rows for spec in row}
-    # A view opened as a tab (the IBL view behind the spheres) asks its row for its height.
-    tabbed = [s for s in views.all_views() if s.tab_of and not win.docks[s.name].isHidden()]
+    # A view in front as a tab (the IBL view before the spheres) asks its row for its height.
+    tabbed = [s for s in views.all_views() if s.tab_of and in_front(win, win.docks[s.name])]
     picked = []  # one dock per shown row (a preset may hide a row's first dock, or all)
     for row in rows:
         shown = [dock[s.name] for s in row if not dock[s.name].isHidden()]
         names = {s.name for s in row}
-        share = max(s.size[1] for s in [*row, *(t for t in tabbed if t.tab_of in names)])
-        if shown:
-            picked.append((shown[0], share))
+        front = [t for t in tabbed if t.tab_of in names]
+        share = max(s.size[1] for s in [*row, *front])
+        if shown:  # (Qt sizes a tab group by the tab in front)
+            picked.append((win.docks[front[0].name] if front else shown[0], share))
     if picked:
         total = sum(share for _, share in picked)
         win.resizeDocks(

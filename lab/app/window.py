@@ -173,9 +173,12 @@ class MainWindow(ModelFiles, QMainWindow):
         areas = list(layouts.DOCK_AREAS)
         self.view_rows = [rows[k] for k in sorted(rows, key=lambda k: (areas.index(k[0]), k[1]))]
         layouts.place_desk(self)
-        for spec in views.all_views():  # closed until the View menu opens it
-            if spec.tab_of:
-                self.docks[spec.name].hide()  # no tab bar either: the layout keeps its sizes
+        for spec in views.all_views():
+            if spec.tab_of:  # a tab behind its owner, where the window has room for a tab bar
+                dock = self.docks[spec.name]
+                dock.setVisible(layouts.room_for_tabs(self))
+                # brought to the front or put back, the row takes its share (fit_docks)
+                dock.visibilityChanged.connect(lambda _: QTimer.singleShot(0, self.fit_docks))
 
     def fit_docks(self) -> None:
         """Dock sizes for the window's size and layout (lab/app/layouts.py)."""

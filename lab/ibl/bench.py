@@ -285,6 +285,98 @@ def targets(figures: dict, envs: dict, quick: bool) -> dict:
     return out
 
 
+def table_run(
+    size: int = 64,
+    reference_samples: int = 8192,
+    max_samples: int = 4096,
+    rate_size: int = RATE_SIZE,
+    rounds: int = 5,
+) -> dict:
+    """`ibl-bench --table`: the data-driven sampler's target alone. GGX alpha 0.1 and 0.5
+    against the .brdf twin, under the furnace and the sky, BRDF sampling and `auto` on Sobol'
+    points: samples to 1% (independent of load), samples/s (the best of 5 rounds over all
+    programs, so a burst of others' load spoils a round, not one side of a ratio), their
+    ratios twin / analytic, and the table's build time."""
+    from lab.brdf_explorer import read_brdf
+
+    renderer = IBLRenderer()
+    models = {"ggx": "ggx", "ggx.brdf": read_brdf(TWIN)}
+    envs = environments(False)
+    print(f"renderer: {renderer.ctx.info['GL_RENDERER']}")
+    samples: dict = {}
+    for alpha in (0.1, 0.5):
+        values = {"alpha": alpha}
+        build = renderer.tables.get(renderer, models["ggx.brdf"], values).seconds
+        print(f"ggx a={alpha}: table built in {build * 1e3:.0f} ms")
+        for env_name, env in envs.items():
+            for label, model in models.items():
+                reference, own = reference_image(
+                    renderer, model, values, env, size, reference_samples
+                )
+                for strategy in ("brdf", "auto"):
+                    samples[(alpha, env_name, label, strategy)] = converge(
+                        renderer, model, values, env, strategy, reference, size, 600.0,
+                        TARGET, own, "sobol", max_samples,
+                    ).samples_to()  # fmt: skip
+    rates: dict = {}
+    cpu: dict = {}  # CPU seconds (all of llvmpipe's threads) per sample: far less load-bound
+    for _ in range(rounds):
+        for alpha, env_name, label, strategy in samples:
+            env = envs[env_name]
+            key = (alpha, env_name, label, chosen_strategy(strategy, env))
+            model, values = models[label], {"alpha": alpha}
+            rate = throughput(renderer, model, values, env, key[3], "sobol", rate_size, 16, 1)
+            rates[key] = max(rates.get(key, 0.0), rate)
+            spent = cpu_per_sample(renderer, model, values, env, key[3], rate_size)
+            cpu[key] = min(cpu.get(key, math.inf), spent)
+    out: dict = {}
+    for (alpha, env_name, label, strategy), (n, measured) in samples.items():
+        key = (alpha, env_name, label, chosen_strategy(strategy, envs[env_name]))
+        seconds = n * math.pi / 4.0 * rate_size**2 / rates[key]
+        out[(alpha, env_name, label, strategy)] = (n, rates[key], seconds, cpu[key])
+        print(
+            f"  a={alpha} {env_name:8s} {label:9s} {strategy:5s} {n:7.0f} spp"
+            f"{' ' if measured else '~'} {rates[key] / 1e6:6.2f} M/s "
+            f"{fmt_time(seconds, measured)}"
+        )
+    print(
+        f"twin / analytic (time at {rate_size}x{rate_size}, passes of 16; <= 2 is the target; "
+        "by CPU time: the same with the time per sample in CPU seconds):"
+    )
+    for alpha in (0.1, 0.5):
+        for env_name in envs:
+            for strategy in ("brdf", "auto"):
+                (na, ra, ta, ca), (nt, rt, tt, ct) = (
+                    out[(alpha, env_name, m, strategy)] for m in ("ggx", "ggx.brdf")
+                )
+                out[("ratio", alpha, env_name, strategy)] = tt / ta
+                out[("cpu ratio", alpha, env_name, strategy)] = nt * ct / (na * ca)
+                print(
+                    f"  a={alpha} {env_name:8s} {strategy:5s} samples x{nt / na:.2f}, "
+                    f"time per sample x{ra / rt:.2f}, time to 1% x{tt / ta:.2f}; by CPU time: "
+                    f"per sample x{ct / ca:.2f}, to 1% x{nt * ct / (na * ca):.2f}"
+                )
+    return out
+
+
+def cpu_per_sample(renderer, model, values, env, strategy: str, size: int) -> float:
+    """CPU seconds per sample on a size x size sphere (Sobol', passes of 16), counting all
+    of llvmpipe's threads: what a sample costs, whatever others' load does to the clock."""
+    job = Progressive(renderer, model, values, env, strategy, size, sequence="sobol")
+    try:
+        job.add(1)
+        renderer.ctx.finish()
+        start, clock = time.process_time(), time.perf_counter()
+        samples = 0
+        while time.perf_counter() - clock < 0.3 or samples < 32:
+            job.add(16)
+            renderer.ctx.finish()
+            samples += 16
+        return (time.process_time() - start) / (samples * math.pi / 4.0 * size * size)
+    finally:
+        job.release()
+
+
 def convergence_plot(runs: dict, path) -> None:
     """Log-log error against samples for the first case and environment, random dashed."""
     import matplotlib

@@ -21,6 +21,9 @@ def cmd_ibl_bench(args) -> int:
                 f"--against {args.against}: no shaders/terms/environment.glsl there: give a "
                 "checkout of brdf-lab (e.g. 'git worktree add /tmp/old <commit>')"
             )
+    if args.table:
+        bench.table_run(args.size, args.reference, args.max_samples)
+        return 0
     bench.run(
         args.size, args.reference, args.budget, args.plot, against, args.quick, args.max_samples
     )
@@ -47,4 +50,9 @@ def register(sub) -> None:
         "--against", metavar="DIR", help="an older checkout: time its pass beside this one's"
     )
     p.add_argument("--quick", action="store_true", help="GGX alpha 0.1 and its twin, furnace")
+    p.add_argument(
+        "--table",
+        action="store_true",
+        help="only the table sampler's target: GGX alpha 0.1, 0.5 against the .brdf twin",
+    )
     p.set_defaults(func=cmd_ibl_bench)

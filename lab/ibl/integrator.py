@@ -118,9 +118,13 @@ def fallback(model: Model, strategy: str) -> str | None:
 
 def chosen_strategy(strategy: str, environment: Environment) -> str:
     """The strategy a pass runs: "auto" resolved for the environment."""
-    if strategy != "auto":
-        return strategy
-    return "brdf" if environment.contrast <= UNIFORM_CONTRAST else "mis_power"
+    return strategy if strategy != "auto" else auto_strategy(environment.contrast)
+
+
+def auto_strategy(contrast: float) -> str:
+    """What "auto" runs under a map of this contrast (environments.contrast); the page gets
+    it per map through its manifest (lab/web/site.py)."""
+    return "brdf" if contrast <= UNIFORM_CONTRAST else "mis_power"
 
 
 def insert_before_view(source: glsl.Source, view: str, text: str, label: str) -> glsl.Source:

@@ -8,6 +8,7 @@ from lab.ibl.integrator import (
     STRATEGIES,
     STRATEGY_TITLES,
     Environment,
+    chosen_strategy,
     fallback,
     render,
     ring_peak,
@@ -21,7 +22,7 @@ def render_png(
     job,
     out,
     env: str = "sky",
-    strategy: str = "mis_power",
+    strategy: str = "auto",
     samples: int = 256,
     rotation: float = 0.0,
     shape: str = "sphere",
@@ -66,8 +67,10 @@ def render_png(
                 "(a physically based BRDF stays at or below 1)"
             )
     plots.save_image(image[..., :3], out, job.exposure)  # the environment behind, opaque
+    chosen = chosen_strategy(strategy, environment)
+    here = f" (here {STRATEGY_TITLES[chosen]})" if strategy == "auto" else ""
     lines.append(
-        f"{samples} samples/pixel, {STRATEGY_TITLES[strategy]}, environment {environment.name}"
-        + ("" if target is None else f", the {shape}")
+        f"{samples} samples/pixel, {STRATEGY_TITLES[strategy]}{here}, environment "
+        f"{environment.name}" + ("" if target is None else f", the {shape}")
     )
     return lines

@@ -33,6 +33,8 @@ def _constant(name: str) -> int:
 
 
 VIEWS, ROWS, COLUMNS = _constant("TABLE_VIEWS"), _constant("TABLE_U"), _constant("TABLE_PHI")
+GUIDES = _constant("TABLE_GUIDES")  # guide texels per cell of a row (`inversion_tables`)
+DEFENSIVE = 0.05  # share of the table's probability spread uniformly over the half vectors
 
 
 def cell_solid_angles() -> np.ndarray:
@@ -44,8 +46,8 @@ def cell_solid_angles() -> np.ndarray:
 @dataclass
 class Table:
     """One model's sampling table: density (VIEWS * ROWS, COLUMNS) per half-vector solid
-    angle, and alias tables (probability, alias) for the rows of each view (VIEWS, ROWS, 2)
-    and the cells of each row (VIEWS * ROWS, COLUMNS, 2)."""
+    angle, and the inverse CDFs (`inversion_tables`) of the rows of each view
+    (VIEWS, 5 ROWS, 4) and of the cells of each row (VIEWS * ROWS, 5 COLUMNS, 4)."""
 
     density: np.ndarray
     marginal: np.ndarray
@@ -62,15 +64,19 @@ class Table:
         totals = m.sum(axis=(1, 2), keepdims=True)
         uniform = np.broadcast_to(cell_solid_angles()[None, :, None], m.shape)
         m = np.where(totals > 0.0, m, uniform)
-        p = m / m.sum(axis=(1, 2), keepdims=True)
-        density = p / cell_solid_angles()[None, :, None]
-        rows = p.sum(axis=2)
-        within = np.where(rows[..., None] > 0.0, p / np.maximum(rows[..., None], 1e-300), 1.0)
-        return cls(
-            density.reshape(VIEWS * ROWS, COLUMNS).astype(np.float32),
-            alias_tables(rows).astype(np.float32),
-            alias_tables(within.reshape(VIEWS * ROWS, COLUMNS)).astype(np.float32),
-        )
+        # A share DEFENSIVE of the draws uniform over the half vectors (a defensive mixture,
+        # Hesterberg 1995): every direction L above the horizon keeps p > 0, whatever the
+        # table's samples of each cell missed, so the estimate stays unbiased.
+        m = m / m.sum(axis=(1, 2), keepdims=True)
+        m = (1.0 - DEFENSIVE) * m + DEFENSIVE * uniform / (2.0 * math.pi)
+        marginal = inversion_tables(m.sum(axis=2)).astype(np.float32)
+        conditional = inversion_tables(m.reshape(VIEWS * ROWS, COLUMNS)).astype(np.float32)
+        # The probability the shader draws each cell with: its float32 CDF steps (a cell of
+        # probability 1e-6 next to CDF 1 would be 6% off its float64 value)
+        p = cell_probabilities(marginal).reshape(VIEWS * ROWS, 1)
+        p = p * cell_probabilities(conditional)
+        density = p / np.tile(cell_solid_angles(), VIEWS)[:, None]
+        return cls(density.astype(np.float32), marginal, conditional)
 
     def bind(self, ctx: moderngl.Context) -> dict:
         """Upload (once) and bind the three textures; the uniforms that name their units."""
@@ -91,28 +97,45 @@ class Table:
         self._textures.clear()
 
 
-def alias_tables(weights: np.ndarray) -> np.ndarray:
-    """(..., n, 2): for each row of `weights` (..., n), Walker's alias table by Vose's
-    method (Vose 1991): bin i keeps its own cell with probability [i, 0] and gives the rest
-    to cell [i, 1], so that cell k is drawn with probability weights[k] / sum. A row with
-    no weight is uniform."""
+def inversion_tables(weights: np.ndarray) -> np.ndarray:
+    """(..., GUIDES * n + n, 4) for each row of `weights` (..., n): the inverse of its CDF
+    as the shader reads it. Texel g < GUIDES * n guides x in [g, g + 1) / (GUIDES * n): it
+    holds the cell i that g's start falls in (Chen and Asau 1974), i's CDF at its lower and
+    upper edge, and the upper edge of cell i + 1; x is in i or i + 1 but where many small
+    cells share a guide's span, where the search goes on over texels GUIDES * n + k, cell
+    k's edges (0, 1). Inverting in order keeps a stratified x stratified over the cells
+    (an alias table, one fetch too, shuffles them). A row with no weight is uniform."""
     w = np.asarray(weights, np.float64)
     flat = w.reshape(-1, w.shape[-1])
     n = flat.shape[1]
-    out = np.zeros((flat.shape[0], n, 2))
-    for index, row in enumerate(flat):
-        total = row.sum()
-        scaled = row * (n / total) if total > 0.0 else np.ones(n)
-        prob, alias = np.ones(n), np.arange(n, dtype=np.float64)
-        small = [i for i in range(n) if scaled[i] < 1.0]
-        large = [i for i in range(n) if scaled[i] >= 1.0]
-        while small and large:
-            s, g = small.pop(), large.pop()
-            prob[s], alias[s] = scaled[s], g
-            scaled[g] -= 1.0 - scaled[s]
-            (small if scaled[g] < 1.0 else large).append(g)
-        out[index, :, 0], out[index, :, 1] = prob, alias  # leftovers keep prob 1 (rounding)
-    return out.reshape(*w.shape, 2)
+    totals = flat.sum(axis=1, keepdims=True)
+    flat = np.where(totals > 0.0, flat, 1.0)
+    # float32 as the shader reads them: a guide past x's own cell would skip it
+    upper = (np.cumsum(flat, axis=1) / flat.sum(axis=1, keepdims=True)).astype(np.float32)
+    upper[:, -1] = 1.0
+    lower = np.concatenate([np.zeros((len(flat), 1), np.float32), upper[:, :-1]], axis=1)
+    starts = (np.arange(GUIDES * n) / (GUIDES * n)).astype(np.float32)
+    # One search for all rows: row i's edges and starts lifted by i * 2^31 as the integers
+    # of their float32 bits (which order non-negative floats as their values do)
+    lift = np.arange(len(flat), dtype=np.int64)[:, None]
+    keys = upper.view(np.int32).astype(np.int64) + (lift << 31)
+    wanted = starts.view(np.int32).astype(np.int64)[None, :] + (lift << 31)
+    found = np.searchsorted(keys.ravel(), wanted.ravel(), "right")
+    cell = np.minimum(found.reshape(len(flat), -1) - lift * n, n - 1)
+    following = np.take_along_axis(upper, np.minimum(cell + 1, n - 1), axis=1)
+    out = np.zeros((len(flat), GUIDES * n + n, 4))
+    out[:, : GUIDES * n, 0] = cell
+    out[:, : GUIDES * n, 1] = np.take_along_axis(lower, cell, axis=1)
+    out[:, : GUIDES * n, 2] = np.take_along_axis(upper, cell, axis=1)
+    out[:, : GUIDES * n, 3] = following
+    out[:, GUIDES * n :, 0], out[:, GUIDES * n :, 1] = lower, upper
+    return out.reshape(*w.shape[:-1], GUIDES * n + n, 4)
+
+
+def cell_probabilities(inverse: np.ndarray) -> np.ndarray:
+    """(..., n): each cell's probability as the shader draws it, from `inversion_tables`."""
+    cells = inverse[..., -(inverse.shape[-2] // (GUIDES + 1)) :, :2].astype(np.float64)
+    return cells[..., 1] - cells[..., 0]
 
 
 def masses(renderer, model, values) -> np.ndarray:

@@ -114,10 +114,18 @@ def measured_table() -> dict:
 
 def environments() -> dict:
     """The procedural maps (lab/ibl/environments.py) of the IBL view and the deck's Monte
-    Carlo demo, served as environments/NAME.f32: float32 RGB, row 0 the zenith."""
-    from lab.ibl.environments import DEFAULT_SIZE, PROCEDURAL
+    Carlo demo, served as environments/NAME.f32: float32 RGB, row 0 the zenith; and the
+    strategy "auto" runs under each (lab.ibl.integrator.auto_strategy)."""
+    from lab.ibl.environments import DEFAULT_SIZE, PROCEDURAL, contrast, procedural
+    from lab.ibl.integrator import auto_strategy
 
-    return {"names": list(PROCEDURAL), "width": DEFAULT_SIZE[0], "height": DEFAULT_SIZE[1]}
+    auto = {name: auto_strategy(contrast(procedural(name, DEFAULT_SIZE))) for name in PROCEDURAL}
+    return {
+        "names": list(PROCEDURAL),
+        "width": DEFAULT_SIZE[0],
+        "height": DEFAULT_SIZE[1],
+        "auto": auto,
+    }
 
 
 def environment_bytes(name: str) -> bytes | None:

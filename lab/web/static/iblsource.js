@@ -5,8 +5,9 @@
 // environments/NAME.f32, with their sampling tables and textures).
 import { assembleFragment } from "./assemble.js";
 
-// As lab/ibl/integrator.py STRATEGIES (the index is the shader's u_strategy).
-export const STRATEGIES = ["uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power"];
+// As lab/ibl/integrator.py STRATEGIES (the index is the shader's u_strategy; "auto" is
+// resolved per map before a pass, by the manifest's environments.auto).
+export const STRATEGIES = ["uniform", "cosine", "environment", "brdf", "mis_balance", "mis_power", "auto"];
 export const STRATEGY_TITLES = {
   uniform: "uniform hemisphere",
   cosine: "cosine-weighted",
@@ -14,7 +15,14 @@ export const STRATEGY_TITLES = {
   brdf: "BRDF importance",
   mis_balance: "MIS, balance heuristic",
   mis_power: "MIS, power heuristic",
+  auto: "auto: BRDF under uniform light, else MIS (power)",
 };
+
+/** The strategy a pass runs: "auto" resolved for the map as lab/ibl/integrator.py
+ * chosen_strategy does (`info` is the manifest's environments, with its `auto` per map). */
+export function chosenStrategy(strategy, environment, info) {
+  return strategy === "auto" ? info.auto?.[environment] ?? "mis_power" : strategy;
+}
 const NO_SAMPLER = `const bool HAS_SAMPLER = false;
 vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return N; }
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 0.0; }`;

@@ -7,7 +7,7 @@
 import { floatTexture } from "../assemble.js";
 import { toImage, topFirst } from "../viewkit.js";
 import { el, viewBox } from "../dom.js";
-import { STRATEGIES, STRATEGY_TITLES, environmentTextures, loadEnvironment, samplerText, withSampler } from "../iblsource.js";
+import { STRATEGIES, STRATEGY_TITLES, chosenStrategy, environmentTextures, loadEnvironment, samplerText, withSampler } from "../iblsource.js";
 
 export { STRATEGIES, STRATEGY_TITLES, samplerText, samplingTables } from "../iblsource.js";
 
@@ -18,12 +18,12 @@ const PASS_MS = 30; // aim of one pass, so that the page stays responsive
 const RINGS = 24; // rings of equal view angle for the furnace's reflectance peak
 const GAIN_SAMPLES = 64; // the furnace names an energy gain from this many samples on
 
-/** The IBL settings of `lab` (the registry's ibl_env, ibl_strategy and ibl_rotation, shared
- * by every panel) as names: {environment, strategy, rotation}. */
+/** The IBL settings of `lab` (the registry's ibl_env, ibl_strategy, ibl_sequence and
+ * ibl_rotation, shared by every panel) as names: {environment, strategy, sobol, rotation}. */
 export function iblSettings(lab) {
   const { settings, specs } = lab;
   return { environment: specs.ibl_env.choices[settings.ibl_env], strategy: specs.ibl_strategy.choices[settings.ibl_strategy],
-    rotation: settings.ibl_rotation };
+    sobol: settings.ibl_sequence === 1, rotation: settings.ibl_rotation };
 }
 
 /** An older address's `ibl=ENVIRONMENT,STRATEGY,ROTATION` (any may be left out) into the
@@ -44,7 +44,7 @@ function readOldAddress(value, lab) {
 
 /** What the view says when the strategy needs a sampler the model lacks (integrator.fallback). */
 export function fallback(model, strategy, files) {
-  if (!["brdf", "mis_balance", "mis_power"].includes(strategy) || samplerText(model, files) !== null) return null;
+  if (!["brdf", "mis_balance", "mis_power", "auto"].includes(strategy) || samplerText(model, files) !== null) return null;
   if (model.delta) return null;
   const used = strategy === "brdf" ? "cosine-weighted" : "MIS of cosine-weighted and environment";
   return `${model.name} has no BRDF sampler: ${used} sampling instead`;
@@ -119,6 +119,8 @@ export class IblView {
     };
     this.envBox = select("ibl_env", {}, "the environment: procedural maps the lab makes itself (lab/ibl/environments.py)");
     this.strategyBox = select("ibl_strategy", STRATEGY_TITLES, "how each sample's direction is drawn");
+    this.sequenceBox = select("ibl_sequence", {},
+      "the numbers each pixel's samples come from: random (PCG) or its own scrambled Sobol' sequence, stratified at every count");
     const turn = lab.specs.ibl_rotation;
     this.rotation = el("input", { type: "range", min: turn.min, max: turn.max, step: turn.step,
       title: "turn the environment about the vertical axis (degrees)" });
@@ -126,7 +128,7 @@ export class IblView {
       lab.set("ibl_rotation", Number(this.rotation.value));
       lab.requestRender();
     });
-    this.root.append(el("div", { class: "ibl-controls" }, this.envBox, this.strategyBox,
+    this.root.append(el("div", { class: "ibl-controls" }, this.envBox, this.strategyBox, this.sequenceBox,
       el("label", { title: this.rotation.title }, "turn ", this.rotation)), this.status);
     this.tick = this.tick.bind(this);
   }
@@ -142,6 +144,7 @@ export class IblView {
     const lab = this.lab;
     this.envBox.value = IBL.environment;
     this.strategyBox.value = IBL.strategy;
+    this.sequenceBox.value = lab.specs.ibl_sequence.choices[IBL.sobol ? 1 : 0];
     this.rotation.value = IBL.rotation;
     const panel = this.panel;
     const key = JSON.stringify([panel.name, panel.model?.code, panel.values, IBL, this.size, lab.lights.length]);
@@ -233,8 +236,10 @@ export class IblView {
     const gl = this.panel.gl;
     const textures = this.textures.get(IBL.environment);
     if (!textures || spp <= 0) return;
-    const view = STRATEGIES.indexOf(IBL.strategy);
-    const compiled = this.panel.program("ibl", `const int LIGHT_COUNT = ${lab.lights.length};`, withSampler(lab.files));
+    const view = STRATEGIES.indexOf(chosenStrategy(IBL.strategy, IBL.environment, lab.environments));
+    // The sequence is compiled in, as on the desktop (terms/environment.glsl LAB_SOBOL).
+    const preamble = `const int LIGHT_COUNT = ${lab.lights.length};${IBL.sobol ? "\n#define LAB_SOBOL" : ""}`;
+    const compiled = this.panel.program("ibl", preamble, withSampler(lab.files));
     gl.useProgram(compiled.program);
     gl.bindVertexArray(this.panel.vao);
     this.panel.setParams(gl, compiled);
@@ -252,6 +257,7 @@ export class IblView {
     set("u_strategy", "uniform1i", view);
     set("u_spp", "uniform1i", spp);
     set("u_frame", "uniform1i", this.passes);
+    set("u_sample0", "uniform1i", this.samples); // where each pixel's Sobol' sequence goes on
     set("u_seed", "uniform1i", 0);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.target.fbo);
     gl.viewport(0, 0, this.size, this.size);
@@ -315,7 +321,10 @@ export class IblView {
     const note = model ? fallback(model, IBL.strategy, this.lab.files) : null;
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
     const gain = this.peak > 1.01 ? ` · ENERGY GAIN (red): a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
-    const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}` +
+    const chosen = chosenStrategy(IBL.strategy, IBL.environment, this.lab.environments);
+    const runs = IBL.strategy === "auto" ? `, here ${STRATEGY_TITLES[chosen]}` : "";
+    const numbers = IBL.sobol ? "Sobol'" : "random";
+    const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}${runs} · ${numbers}` +
       (note ? ` · ${note}` : "") + gain;
     this.status.textContent = text;
     this.status.classList.toggle("bad", Boolean(this.error || note || gain));
