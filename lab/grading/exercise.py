@@ -46,6 +46,7 @@ class Exercise:
     replaces: str | None = None  # the library term file the student's file stands in for
     loop_limit: int = LOOP_LIMIT  # iterations per loop and invocation before the guard stops it
     sampler_for: str | None = None  # a library model whose BRDF sampler the student writes
+    estimator: bool = False  # with sampler_for: the student writes the estimate itself
     api: list[str] = field(default_factory=list)  # library names the handout gives (scope.py)
 
     @property
@@ -144,6 +145,7 @@ def load_exercise(folder: str | Path) -> Exercise:
         replaces=spec.get("replaces"),
         loop_limit=int(spec.get("loop_limit", LOOP_LIMIT)),
         sampler_for=spec.get("sampler_for"),
+        estimator=bool(spec.get("estimator", False)),
         api=[str(name) for name in spec.get("api", DEFAULT_API)],
     )
     if exercise.loop_limit < 1:
@@ -359,7 +361,7 @@ def header_changes(stub: Param, mine: Param) -> list[str]:
 
 def sampler_model(exercise: Exercise, path: Path, code: str, trusted: bool = False) -> Model:
     """A sampling exercise: the library model, with the student's file as its sampler."""
-    from lab.ibl.integrator import LOBE_SAMPLER
+    from lab.ibl.integrator import ESTIMATOR_HOST, ESTIMATOR_LINE, LOBE_SAMPLER
 
     label = label_of(path)
     try:
@@ -376,6 +378,10 @@ def sampler_model(exercise: Exercise, path: Path, code: str, trusted: bool = Fal
         code, loops = guard_loops(compiled, "lab_loop_sampler_", SAMPLER_LINE_BASE)
     # The counters share the first line, so the file's line numbers stay its own.
     counters = "".join(f"int lab_loop_sampler_{k} = 0; " for k in range(len(loops)))
+    if exercise.estimator:  # the estimate itself: the IBL view calls it (ESTIMATOR_HOST)
+        model.estimator = True
+        model.sampler_code = counters + ESTIMATOR_LINE + code.rstrip("\n") + "\n" + ESTIMATOR_HOST
+        return model
     model.sampler_code = counters + code.rstrip("\n") + "\n" + LOBE_SAMPLER
     return model
 

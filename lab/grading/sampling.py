@@ -72,6 +72,20 @@ def fingerprint(renderer, model, params, seed: int) -> np.ndarray:
     return np.concatenate([sampled, pdf[:, None]], axis=1)
 
 
+def estimate_fingerprint(renderer, model, params, env: str, rotation: float, seed: int):
+    """(pixels, 3): an estimator exercise's estimate (the student writes it, not a sampler)
+    at 4 samples per pixel of a 16-pixel sphere, from random numbers fixed by `seed` alone:
+    programs that draw and weigh alike give the same rows."""
+    ibl = ibl_renderer(renderer)
+    job = Progressive(ibl, model, params, environment(env), "brdf", 16, rotation, seed)
+    try:
+        job.add(4)
+        image = job.image()
+    finally:
+        job.release()
+    return image[_sphere(16)][:, :3].astype(np.float64)
+
+
 # -- chi-square -------------------------------------------------------------------------------
 REDRAW = 1_000_003  # seed offset of the chi-square's second, independent draw
 DECISIVE = 1e-7  # a first draw this improbable (per view) fails without a second one
@@ -283,14 +297,23 @@ def program_seed(model, seed: int) -> int:
 
 
 def render_raw(
-    renderer, model, params, env: str, size: int, samples: int, passes: int, seed: int
+    renderer,
+    model,
+    params,
+    env: str,
+    size: int,
+    samples: int,
+    passes: int,
+    seed: int,
+    rotation: float = 0.0,
 ) -> np.ndarray:
     """(3, size, size, 3) float32: one pass of `samples` per pixel (RGB), the mean of
     `passes` independent such passes (RGB), and in channel 0 of the third the sample
-    variance of the passes' luminance per pixel (the estimator's own noise)."""
+    variance of the passes' luminance per pixel (the estimator's own noise). `rotation`
+    turns the environment about the vertical (degrees)."""
     ibl = ibl_renderer(renderer)
     seed = program_seed(model, seed)
-    job = Progressive(ibl, model, params, environment(env), "brdf", size, 0.0, seed)
+    job = Progressive(ibl, model, params, environment(env), "brdf", size, rotation, seed)
     luma = np.array(LUMA)
     try:
         total = first = np.zeros((size, size, 3))

@@ -128,6 +128,13 @@ EXERCISE: tuple[Key, ...] = (
     Key("wrapper", "string", None, "a library model that calls the student's term functions"),
     Key("replaces", "string", None, "the library term file the student file stands in for"),
     Key("sampler_for", "string", None, "a library model whose BRDF sampler the student writes"),
+    Key(
+        "estimator",
+        "boolean",
+        False,
+        "with sampler_for: the student writes the model's Monte Carlo estimate of the "
+        "reflection equation (estimate_radiance), not its sampler",
+    ),
     Key("loop_limit", "integer", LOOP_LIMIT, "iterations per loop before the guard stops it"),
     Key("defaults", "table", {}, "check keys merged into every [[checks]] table"),
     Key("checks", "tables", REQUIRED, "the graded checks, one [[checks]] table each"),

@@ -54,6 +54,7 @@ TYPES = frozenset(
 # Host lines that glsl.assemble_fragment and lab.ibl.integrator write around the model.
 HOST_NAMES = ("IS_DELTA", "AMBIENT_REFLECTANCE", "DELTA_REFLECTANCE")
 SAMPLER_HOST_NAMES = ("HAS_SAMPLER", "SAMPLE_BRDF", "PDF_BRDF")
+ESTIMATOR_HOST_NAMES = ("random2",)  # lab.ibl.integrator.ESTIMATOR_LINE gives an estimator
 
 
 @dataclass
@@ -252,7 +253,7 @@ def _views() -> list[Path]:
 
 @cache
 def program_names(
-    includes: tuple[str, ...], models: tuple[str, ...], sampler: bool
+    includes: tuple[str, ...], models: tuple[str, ...], sampler: bool, estimator: bool = False
 ) -> dict[str, str]:
     """Every name the lab's part of an exercise's programs declares -> where (a file under
     shaders/ or the harness): the library files `includes`, the code of the library `models`,
@@ -272,6 +273,8 @@ def program_names(
     if sampler:
         files += ["terms/sampling.glsl", "terms/environment.glsl"]
         add(SAMPLER_HOST_NAMES, "the lab's sampler host")
+    if estimator:
+        add(ESTIMATOR_HOST_NAMES, "the lab's estimator host")
     for relative in dict.fromkeys(files):
         path = SHADER_DIR / relative
         add(_file_names(path), label_of(path))
@@ -288,7 +291,8 @@ def exercise_names(exercise) -> dict[str, str]:
     besides the student's file."""
     if exercise.sampler_for:
         model = load_model(exercise.sampler_for)
-        return program_names(tuple(model.includes), (exercise.sampler_for,), True)
+        estimator = bool(getattr(exercise, "estimator", False))
+        return program_names(tuple(model.includes), (exercise.sampler_for,), True, estimator)
     if exercise.wrapper:
         wrapper = load_model(exercise.wrapper)
         includes = tuple(i for i in wrapper.includes if i != exercise.replaces)

@@ -58,6 +58,16 @@ vec3 SAMPLE_BRDF(vec3 V, vec3 N, vec3 X, vec3 Y, vec3 u) { return sample_lobe(u.
 float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N, X, Y); }
 """
 
+# An estimator exercise's file (lab.grading.exercise, `estimator = true`) is the estimate
+# itself: estimate_radiance(n, V, N, X, Y), the mean of n samples, which pass_sum
+# (terms/environment.glsl) calls instead of its own loop. The line goes in front of the
+# file, on its first line (its line numbers stay its own): what the handout gives it, the
+# map's radiance (defined later, with the environment) and two uniform numbers per call.
+ESTIMATOR_LINE = (
+    "vec3 environment(vec3 d); vec2 random2() { return vec2(lab_random(), lab_random()); } "
+)
+ESTIMATOR_HOST = NO_SAMPLER + "\n#define LAB_ESTIMATOR estimate_radiance\n"
+
 
 def sampler_path(model: Model):
     """The model's BRDF sampler file, or None (BRDF Explorer files and models without one)."""

@@ -1,7 +1,9 @@
 """`kind = "ibl_render"`: the lit sphere under an `environment` with the student's sampler
 alone (the IBL view's BRDF strategy), in `converged / samples` independent passes of
 `samples` per pixel; the reference is the solution's estimator run the same way, from other
-random numbers. Passes when the estimator is unbiased (a z-test of the two means per ring
+random numbers, the environment turned by `phi_i` about the vertical (hidden mode draws
+it). With `estimator = true` the student's file is the estimate itself, not a sampler.
+Passes when the estimator is unbiased (a z-test of the two means per ring
 of equal view angle and over the sphere, with both estimators' own variances from their
 passes, failing a correct program with probability `alpha`) and its RMS error at `samples`
 per pixel is at most `factor` times the solution's: what importance sampling buys (the
@@ -77,6 +79,7 @@ class IBLRenderKind(SampledKind):
             o["samples"],
             self.passes(check),
             check.seed,
+            check.phi_i,  # the environment turned by the light's azimuth (hidden: drawn)
         )
 
     def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:
@@ -110,6 +113,16 @@ class IBLRenderKind(SampledKind):
         if values.shape != reference.shape:
             return True
         return not self._judge(check, values, reference)[0]
+
+    def live_values(self, renderer, model, check: Check) -> np.ndarray:
+        """An estimator exercise's estimate at fixed random numbers (it has no sampler of
+        its own to fingerprint); a sampler's rows otherwise."""
+        if getattr(model, "estimator", False):
+            o = check.options
+            return sampling.estimate_fingerprint(
+                renderer, model, check.params, o["environment"], check.phi_i, check.seed
+            )
+        return super().live_values(renderer, model, check)
 
     def nearest(self, check: Check, got, expected, candidates: dict) -> str | None:
         """The known mistake whose estimator converges like the student's (the closest)."""
