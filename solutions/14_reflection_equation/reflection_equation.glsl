@@ -7,16 +7,17 @@
 // radiance L_i arriving from direction L) and random2() (two new uniform numbers in [0, 1)).
 
 // One sample's contribution f_r(L, V) L_i(L) cos(theta_L) / p(L), for one direction L drawn
-// from the unit numbers u with a density p of your choice (here: cosine-weighted).
+// from the unit numbers u with a density p of your choice (here: uniform over the hemisphere).
 vec3 radiance_sample(vec2 u, vec3 V, vec3 N, vec3 X, vec3 Y) {
-    float r = sqrt(u.x);
+    // Uniform over the hemisphere: cos(theta) = u.x, phi = 2 pi u.y, p = 1 / (2 pi).
+    float cos_t = u.x;
+    float sin_t = sqrt(max(1.0 - cos_t * cos_t, 0.0));
     float phi = 2.0 * PI * u.y;
-    vec3 local = vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u.x, 0.0)));
-    vec3 L = to_world(local, X, Y, N);
-    float cos_l = dot(N, L);
-    float pdf = cos_l * INV_PI;
-    if (pdf <= 0.0) return vec3(0.0);
-    return BRDF(L, V, N, X, Y) * environment(L) * cos_l / pdf;
+    vec3 L = to_world(vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t), X, Y, N);
+    float NoL = dot(N, L);
+    if (NoL <= 0.0) return vec3(0.0);
+    float pdf = 0.5 * INV_PI;
+    return BRDF(L, V, N, X, Y) * environment(L) * NoL / pdf;
 }
 
 // The estimate of L_o(V): the mean of n samples, each from two new random numbers.

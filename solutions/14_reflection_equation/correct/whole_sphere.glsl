@@ -7,7 +7,7 @@
 // radiance L_i arriving from direction L) and random2() (two new uniform numbers in [0, 1)).
 
 // One sample's contribution f_r(L, V) L_i(L) cos(theta_L) / p(L), for one direction L drawn
-// from the unit numbers u with a density p of your choice (here: cosine-weighted).
+// from the unit numbers u with a density p of your choice (here: uniform over the whole sphere).
 vec3 radiance_sample(vec2 u, vec3 V, vec3 N, vec3 X, vec3 Y) {
     // Uniform over the whole sphere, p = 1 / (4 pi): half the directions lie below the
     // surface and add nothing, but the mean is right.
@@ -19,6 +19,7 @@ vec3 radiance_sample(vec2 u, vec3 V, vec3 N, vec3 X, vec3 Y) {
     return BRDF(L, V, N, X, Y) * environment(L) * NoL * 4.0 * PI;
 }
 
+// The estimate of L_o(V): the mean of n samples, each from two new random numbers.
 vec3 estimate_radiance(int n, vec3 V, vec3 N, vec3 X, vec3 Y) {
     vec3 sum = vec3(0.0);
     for (int i = 0; i < n; ++i) {

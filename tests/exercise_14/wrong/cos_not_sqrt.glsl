@@ -1,3 +1,5 @@
+// WRONG: cosine sampling without the square root (r = u): the directions do not follow cos theta / pi
+// HINT: sqrt
 // @title Exercise 14: the reflection equation under an environment
 // @formula L_o(V) = integral of f_r(L, V) L_i(L) cos(theta_L) dL  ~  (1/n) sum f_r L_i cos / p(L_k)
 // @source J. T. Kajiya, "The Rendering Equation", SIGGRAPH 1986.
@@ -9,16 +11,17 @@
 // One sample's contribution f_r(L, V) L_i(L) cos(theta_L) / p(L), for one direction L drawn
 // from the unit numbers u with a density p of your choice (here: cosine-weighted).
 vec3 radiance_sample(vec2 u, vec3 V, vec3 N, vec3 X, vec3 Y) {
-    // Uniform over the hemisphere: cos(theta) = u.x, p = 1 / (2 pi).
-    float c = u.x;
-    float s = sqrt(max(1.0 - c * c, 0.0));
+    float r = u.x;
     float phi = 2.0 * PI * u.y;
-    vec3 L = to_world(vec3(s * cos(phi), s * sin(phi), c), X, Y, N);
-    float NoL = dot(N, L);
-    if (NoL <= 0.0) return vec3(0.0);
-    return BRDF(L, V, N, X, Y) * environment(L) * NoL * (2.0 * PI);
+    vec3 local = vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u.x * u.x, 0.0)));
+    vec3 L = to_world(local, X, Y, N);
+    float cos_l = dot(N, L);
+    float pdf = cos_l * INV_PI;
+    if (pdf <= 0.0) return vec3(0.0);
+    return BRDF(L, V, N, X, Y) * environment(L) * cos_l / pdf;
 }
 
+// The estimate of L_o(V): the mean of n samples, each from two new random numbers.
 vec3 estimate_radiance(int n, vec3 V, vec3 N, vec3 X, vec3 Y) {
     vec3 sum = vec3(0.0);
     for (int i = 0; i < n; ++i) {
