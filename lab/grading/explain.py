@@ -242,7 +242,9 @@ class Explainer(TraceEvidence):
         matched once per submission, at the first failed check's settings."""
         kind = kind_of(check)
         if kind.by_program:
-            memo = (exercise.solution, model.code)
+            # A sampler's or estimator's program is its sampler_code (model.code is the
+            # library model's, the same for every submission)
+            memo = (exercise.solution, model.code, getattr(model, "sampler_code", None))
             if memo not in self._matched:
                 self._matched[memo] = self._live_match(exercise, check, model, None, None)
             return self._matched[memo]

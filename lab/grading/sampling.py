@@ -424,7 +424,8 @@ def judge_render(
                 f"over {samples * passes} samples per pixel your estimator converges to another "
                 f"image: in the {name} its mean is {100 * rel:+.1f}% off the reference's (z = "
                 f"{z[worst]:.1f}, allowed |z| ≤ {limit:.1f} for noise like yours); {noise}: it is "
-                "biased — the pdf does not match what the sampler draws"
+                "biased — a sample's weight f_r L_i cos θ / p does not fit the density p its "
+                "direction is drawn with"
             ),
             stats,
         )
@@ -433,7 +434,8 @@ def judge_render(
             False,
             (
                 f"{noise}: {ratio:.1f}× the solution's noise; it converges to the right image, "
-                "but a sampler shaped like the lobe gets there with far fewer samples"
+                "but needs far more samples to get there (samples drawn like the lobe, each "
+                "from its own random numbers, need fewer)"
             ),
             stats,
         )
@@ -467,3 +469,24 @@ def ring_deviation(image: np.ndarray, reference: np.ndarray) -> float:
 
 
 SAME_RENDER = 0.05  # two estimators whose converged rings agree this well count as alike
+
+
+ALIKE_ALPHA = 1e-3  # two estimators converge alike when no ring's z-test fails at this level
+
+
+def converge_distance(got: np.ndarray, other: np.ndarray, passes: int) -> float | None:
+    """How unlike two estimators' renders (render_raw's arrays) are, or None where they
+    converge to different images (a ring's or the sphere's z-test of their means, with both
+    variances, fails at ALIKE_ALPHA): the largest |z| over its limit plus the log of their
+    noise ratio, so that of two alike the one as noisy as `got` is nearer."""
+    got, other = got.astype(np.float64), other.astype(np.float64)
+    if not (np.isfinite(got).all() and np.isfinite(other).all()):
+        return None
+    z, words = bias_z(got, other, passes)
+    limits = np.array([t_limit(ALIKE_ALPHA, len(z), dof) for _, _, dof in words])
+    worst = float(np.max(np.abs(z) / limits))
+    if worst > 1.0:
+        return None
+    mask = _sphere(got.shape[1])
+    mine, theirs = got[2][..., 0][mask].mean(), other[2][..., 0][mask].mean()
+    return worst + 0.5 * abs(math.log(max(mine, 1e-30) / max(theirs, 1e-30)))
