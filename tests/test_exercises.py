@@ -252,7 +252,9 @@ def test_every_exercise_has_the_files_of_its_handout():
         assert exercise.solution.is_file() and "TODO" not in exercise.solution.read_text()
         assert exercise.max_points == 10
         kinds = {c.kind for c in exercise.checks}
-        if exercise.sampler_for:  # a sampler: its distribution, its pdf, its renders
+        if exercise.estimator:  # the estimate itself (14): its renders
+            assert kinds == {"ibl_render"}, exercise.name
+        elif exercise.sampler_for:  # a sampler: its distribution, its pdf, its renders
             assert {"chi_square", "pdf_integral", "ibl_render"} <= kinds, exercise.name
         elif kinds == {"properties"}:  # tests of the models linked with them (11)
             assert len({c.options["target"] for c in exercise.checks}) >= 5, exercise.name

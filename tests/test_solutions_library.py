@@ -23,7 +23,7 @@ EXERCISES = [
     for e in find_exercises(ROOT / "exercises")
     if not e.sampler_for and {c.kind for c in e.checks} != {"properties"}
 ]
-SAMPLERS = [e for e in find_exercises(ROOT / "exercises") if e.sampler_for]
+SAMPLERS = [e for e in find_exercises(ROOT / "exercises") if e.sampler_for and not e.estimator]
 
 
 def library_model(exercise):

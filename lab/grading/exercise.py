@@ -153,6 +153,8 @@ def load_exercise(folder: str | Path) -> Exercise:
             f"{where}:{lines.line('', 0, 'loop_limit')}: loop_limit must be a positive number "
             "of iterations"
         )
+    if exercise.estimator:
+        _check_estimator(exercise, spec, where, lines)
     headers.check_files(exercise, where, lines)
     headers.check_params(exercise, spec, where, lines)
     wrapper = exercise.wrapper or exercise.sampler_for  # the value kinds' conditioning:
@@ -166,6 +168,24 @@ def load_exercise(folder: str | Path) -> Exercise:
             )
         seen[check.name] = lines.line("checks", index, "name")
     return exercise
+
+
+def _check_estimator(exercise: Exercise, spec: dict, where: str, lines) -> None:
+    """An estimator exercise names the model it estimates with, and its checks render with
+    the student's estimate (there is no sampler of theirs to test)."""
+    at = lines.line("", 0, "estimator")
+    if not exercise.sampler_for:
+        raise ExerciseError(
+            f'{where}:{at}: estimator = true needs sampler_for = "MODEL", the library model '
+            "whose BRDF the student's estimate integrates"
+        )
+    for index, check in enumerate(exercise.checks):
+        if check.kind != "ibl_render":
+            raise ExerciseError(
+                f"{where}:{lines.line('checks', index, 'kind')}: check {check.name}: kind "
+                f"{check.kind!r} tests a sampler; an estimator exercise (estimator = true) "
+                'is graded by its renders: use kind = "ibl_render"'
+            )
 
 
 def find_exercises(root: str | Path) -> list[Exercise]:

@@ -117,6 +117,7 @@ def exercise_entry(exercise: Exercise) -> dict:
         "wrapper": exercise.wrapper,
         "replaces": exercise.replaces,
         "sampler_for": exercise.sampler_for,  # a sampler exercise: the model it samples
+        "estimator": exercise.estimator,  # with sampler_for: the file is the estimate itself
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
         "grader_only": only_graded,
