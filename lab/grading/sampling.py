@@ -72,20 +72,6 @@ def fingerprint(renderer, model, params, seed: int) -> np.ndarray:
     return np.concatenate([sampled, pdf[:, None]], axis=1)
 
 
-def estimate_fingerprint(renderer, model, params, env: str, rotation: float, seed: int):
-    """(pixels, 3): an estimator exercise's estimate (the student writes it, not a sampler)
-    at 4 samples per pixel of a 16-pixel sphere, from random numbers fixed by `seed` alone:
-    programs that draw and weigh alike give the same rows."""
-    ibl = ibl_renderer(renderer)
-    job = Progressive(ibl, model, params, environment(env), "brdf", 16, rotation, seed)
-    try:
-        job.add(4)
-        image = job.image()
-    finally:
-        job.release()
-    return image[_sphere(16)][:, :3].astype(np.float64)
-
-
 # -- chi-square -------------------------------------------------------------------------------
 REDRAW = 1_000_003  # seed offset of the chi-square's second, independent draw
 DECISIVE = 1e-7  # a first draw this improbable (per view) fails without a second one
@@ -469,24 +455,3 @@ def ring_deviation(image: np.ndarray, reference: np.ndarray) -> float:
 
 
 SAME_RENDER = 0.05  # two estimators whose converged rings agree this well count as alike
-
-
-ALIKE_ALPHA = 1e-3  # two estimators converge alike when no ring's z-test fails at this level
-
-
-def converge_distance(got: np.ndarray, other: np.ndarray, passes: int) -> float | None:
-    """How unlike two estimators' renders (render_raw's arrays) are, or None where they
-    converge to different images (a ring's or the sphere's z-test of their means, with both
-    variances, fails at ALIKE_ALPHA): the largest |z| over its limit plus the log of their
-    noise ratio, so that of two alike the one as noisy as `got` is nearer."""
-    got, other = got.astype(np.float64), other.astype(np.float64)
-    if not (np.isfinite(got).all() and np.isfinite(other).all()):
-        return None
-    z, words = bias_z(got, other, passes)
-    limits = np.array([t_limit(ALIKE_ALPHA, len(z), dof) for _, _, dof in words])
-    worst = float(np.max(np.abs(z) / limits))
-    if worst > 1.0:
-        return None
-    mask = _sphere(got.shape[1])
-    mine, theirs = got[2][..., 0][mask].mean(), other[2][..., 0][mask].mean()
-    return worst + 0.5 * abs(math.log(max(mine, 1e-30) / max(theirs, 1e-30)))

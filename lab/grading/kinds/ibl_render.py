@@ -11,6 +11,8 @@ check's `ranges` keep hidden mode's exponent where that separates samplers)."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from lab.grading import sampling
@@ -19,6 +21,42 @@ from lab.grading.kinds.sampled import SampledKind
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
 from lab.ibl.environments import PROCEDURAL
+from lab.ibl.integrator import Progressive
+
+
+def estimate_fingerprint(renderer, model, params, env: str, rotation: float, seed: int):
+    """(pixels, 3): an estimator exercise's estimate (the student writes it, not a sampler)
+    at 4 samples per pixel of a 16-pixel sphere, from random numbers fixed by `seed` alone:
+    programs that draw and weigh alike give the same rows."""
+    ibl = sampling.ibl_renderer(renderer)
+    job = Progressive(ibl, model, params, sampling.environment(env), "brdf", 16, rotation, seed)
+    try:
+        job.add(4)
+        image = job.image()
+    finally:
+        job.release()
+    return image[sampling._sphere(16)][:, :3].astype(np.float64)
+
+
+ALIKE_ALPHA = 1e-3  # two estimators converge alike when no ring's z-test fails at this level
+
+
+def converge_distance(got: np.ndarray, other: np.ndarray, passes: int) -> float | None:
+    """How unlike two estimators' renders (render_raw's arrays) are, or None where they
+    converge to different images (a ring's or the sphere's z-test of their means, with both
+    variances, fails at ALIKE_ALPHA): the largest |z| over its limit plus the log of their
+    noise ratio, so that of two alike the one as noisy as `got` is nearer."""
+    got, other = got.astype(np.float64), other.astype(np.float64)
+    if not (np.isfinite(got).all() and np.isfinite(other).all()):
+        return None
+    z, words = sampling.bias_z(got, other, passes)
+    limits = np.array([sampling.t_limit(ALIKE_ALPHA, len(z), dof) for _, _, dof in words])
+    worst = float(np.max(np.abs(z) / limits))
+    if worst > 1.0:
+        return None
+    mask = sampling._sphere(got.shape[1])
+    mine, theirs = got[2][..., 0][mask].mean(), other[2][..., 0][mask].mean()
+    return worst + 0.5 * abs(math.log(max(mine, 1e-30) / max(theirs, 1e-30)))
 
 
 def _picture(image: np.ndarray) -> bytes:
@@ -119,7 +157,7 @@ class IBLRenderKind(SampledKind):
         its own to fingerprint); a sampler's rows otherwise."""
         if getattr(model, "estimator", False):
             o = check.options
-            return sampling.estimate_fingerprint(
+            return estimate_fingerprint(
                 renderer, model, check.params, o["environment"], check.phi_i, check.seed
             )
         return super().live_values(renderer, model, check)
@@ -136,9 +174,7 @@ class IBLRenderKind(SampledKind):
                 best, best_off = key, off
         if best is not None or np.ndim(got) != 4 or len(got) != 3:
             return best
-        distances = {
-            k: sampling.converge_distance(got, v, self.passes(check)) for k, v in shaped.items()
-        }
+        distances = {k: converge_distance(got, v, self.passes(check)) for k, v in shaped.items()}
         alike = {k: d for k, d in distances.items() if d is not None}
         return min(alike, key=alike.get) if alike else None
 
