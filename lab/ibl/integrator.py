@@ -62,9 +62,11 @@ float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N
 # itself: estimate_radiance(n, V, N, X, Y), the mean of n samples, which pass_sum
 # (terms/environment.glsl) calls instead of its own loop. The line goes in front of the
 # file, on its first line (its line numbers stay its own): what the handout gives it, the
-# map's radiance (defined later, with the environment) and two uniform numbers per call.
+# map's radiance (defined later, with the environment), the BRDF (defined before it here,
+# after it on the page: lab/web/static/submission.js) and two uniform numbers per call.
 ESTIMATOR_LINE = (
-    "vec3 environment(vec3 d); vec2 random2() { return vec2(lab_random(), lab_random()); } "
+    "vec3 environment(vec3 d); vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y); "
+    "vec2 random2() { return vec2(lab_random(), lab_random()); } "
 )
 ESTIMATOR_HOST = NO_SAMPLER + "\n#define LAB_ESTIMATOR estimate_radiance\n"
 

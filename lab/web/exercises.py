@@ -20,6 +20,7 @@ import numpy as np
 from lab.grading import diagnosis, mistakes
 from lab.grading.exercise import Exercise, ExerciseError, find_exercises
 from lab.grading.kinds import VALUES_FILE, kind_of
+from lab.ibl.integrator import ESTIMATOR_HOST, ESTIMATOR_LINE
 from lab.resources import data_dir
 
 
@@ -117,7 +118,16 @@ def exercise_entry(exercise: Exercise) -> dict:
         "wrapper": exercise.wrapper,
         "replaces": exercise.replaces,
         "sampler_for": exercise.sampler_for,  # a sampler exercise: the model it samples
-        "estimator": exercise.estimator,  # with sampler_for: the file is the estimate itself
+        # With sampler_for: the file is the estimate itself, put between `line` and `host`
+        # as the grader does (lab.ibl.integrator); `stand_in` gives the page's views without
+        # an environment map (all but IBL) the map's function, which they never call.
+        "estimator": {
+            "line": ESTIMATOR_LINE,
+            "host": ESTIMATOR_HOST,
+            "stand_in": "vec3 environment(vec3 d) { return vec3(0.0); }\n",
+        }
+        if exercise.estimator
+        else None,
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
         "grader_only": only_graded,

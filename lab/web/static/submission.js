@@ -60,10 +60,14 @@ export function buildSubmission(exercise, text, path, models) {
 function submission(exercise, text, path, models) {
   if (exercise.sampler_for) {
     // A sampler: the library model with the student's functions in front and made its
-    // sampler, for the sampling views (ibl_sample, ibl_pdf) of sampling.js.
+    // sampler, for the sampling views (ibl_sample, ibl_pdf) of sampling.js. An estimator
+    // (exercise.estimator): the student's estimate between the grader's two texts, with a
+    // stand-in for the environment map the page's other views lack (lab/web/exercises.py).
     const model = models[exercise.sampler_for];
     const includes = model.includes.includes(SAMPLING) ? model.includes : [...model.includes, SAMPLING];
-    return { ...model, name: exercise.name, path, code: `${text.replace(/\n+$/, "")}\n${model.code}${LOBE_SAMPLER}`, includes,
+    const estimator = exercise.estimator;
+    const [line, host] = estimator ? [estimator.line, estimator.host + estimator.stand_in] : ["", LOBE_SAMPLER];
+    return { ...model, name: exercise.name, path, code: `${line}${text.replace(/\n+$/, "")}\n${model.code}${host}`, includes,
       studentLines: text.split("\n").length };
   }
   if (exercise.wrapper) {
