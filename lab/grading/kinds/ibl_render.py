@@ -80,8 +80,8 @@ class IBLRenderKind(SampledKind):
 
     captions = {
         "converged reference": "the solution's estimator, converged (the reference)",
-        "solution": "the solution's sampler at the same samples",
-        "yours": "your sampler at the same samples",
+        "solution": "the solution's estimator at the same samples",
+        "yours": "your estimator at the same samples",
         "yours, converged": "your estimator run longer: what it converges to",
     }
 
