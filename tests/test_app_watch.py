@@ -105,3 +105,26 @@ def test_a_sampler_file_is_judged_as_the_grader_judges_it(tmp_path, renderer):
     assert result.returncode == 0, result.stderr
     assert "judged by the grader's checks" in result.stdout
     assert "chi_square.glossy: FAILED" in result.stdout
+
+
+def test_an_estimator_file_is_judged_by_its_renders(tmp_path, renderer):
+    """Exercise 14: the watched file is the student's estimate. Its ibl_render checks (a
+    fraction of a second each) rerun at each save with the grader's verdicts, and the window
+    shows the render run long beside the reference."""
+    name = "14_reflection_equation"
+    for solved in (True, False):
+        path = copy_exercise(tmp_path / str(solved), name, solved=solved)
+        view = SamplerView.find(path)
+        assert view is not None and {c.kind for c in view.checks} == {"ibl_render"}
+        lines, panels = view.judge(renderer, view.load(path))
+        graded = {r.name: r for r in Grader().run(view.exercise, path)}
+        for check, line in zip(view.checks, lines, strict=True):
+            result = graded[check.name]
+            verdict = "passed" if result.passed else "FAILED"
+            assert line == f"  {check.name}: {verdict}: {result.message}"
+            assert result.passed == solved
+        assert len(panels) == 3
+    result = run_watch(path)
+    assert result.returncode == 0, result.stderr
+    assert "your estimator, judged by the checks" in result.stdout
+    assert "ibl_render.grey_room: FAILED" in result.stdout

@@ -174,7 +174,8 @@ def watch(path: Path, light: tuple[float, float], frames: int = 0) -> int:
         )
     if sampler:
         print(
-            f"exercise {sampler.exercise.name}: your sampler, judged by the checks "
+            f"exercise {sampler.exercise.name}: your "
+            f"{'estimator' if sampler.exercise.estimator else 'sampler'}, judged by the checks "
             f"{', '.join(c.name for c in sampler.checks)} at each save"
         )
     while not glfw.window_should_close(window):
