@@ -54,11 +54,28 @@ float pdf_lobe(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
 }
 
 
+# An estimator exercise's (14) given functions: the model's BRDF and the map, made opaque
+# as the library's are, and random numbers that change from call to call (as
+# lab.ibl.integrator.ESTIMATOR_LINE's do), so the optimiser cannot fold the samples into one.
+ESTIMATOR_GIVEN = """
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return L; }
+vec3 environment(vec3 d) { return d; }
+"""
+ESTIMATOR_RANDOM = """
+uint lab_draws = 0u;
+vec2 random2() { lab_draws += 1u; return vec2(float(lab_draws) * 0.37, float(lab_draws) * 0.61); }
+"""
+
+
 def library_text(exercise) -> str | None:
     """The library's code for what the exercise asks: its lobe sampler, the term file the
     student's file replaces, or its model's file (None if there is none)."""
-    if exercise.sampler_for:
-        return LIBRARY_LOBES.get(exercise.sampler_for)
+    if exercise.sampler_for:  # (an estimator's model has no estimate of its own)
+        return (
+            None
+            if getattr(exercise, "estimator", False)
+            else LIBRARY_LOBES.get(exercise.sampler_for)
+        )
     if exercise.replaces:
         path = SHADER_DIR / exercise.replaces
     else:
@@ -135,6 +152,8 @@ def _make_frame(exercise) -> tuple[str, str]:
         opaque((SHADER_DIR / i).read_text(encoding="utf-8"), exercise.api)
         for i in dict.fromkeys(includes)
     ]
+    if getattr(exercise, "estimator", False):  # what its host gives an estimate, opaque
+        library.append(opaque(ESTIMATOR_GIVEN, exercise.api) + ESTIMATOR_RANDOM)
     before = "\n".join(["#version 450", glsl_defines(), _parameters(exercise), *library])
     return before + "\n", "\n" + _main(exercise.functions) + "\n"
 
