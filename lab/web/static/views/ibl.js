@@ -318,10 +318,10 @@ export class IblView {
   showStatus() {
     const IBL = this.ibl();
     const model = this.panel.model;
-    const note = model ? fallback(model, IBL.strategy, this.lab.files) : null;
+    const chosen = chosenStrategy(IBL.strategy, IBL.environment, this.lab.environments);
+    const note = model ? fallback(model, chosen, this.lab.files) : null;
     const done = this.samples >= MAX_SAMPLES ? " (done)" : "";
     const gain = this.peak > 1.01 ? ` · ENERGY GAIN (red): a ring reflects ${this.peak.toFixed(2)}× the light that arrives` : "";
-    const chosen = chosenStrategy(IBL.strategy, IBL.environment, this.lab.environments);
     const runs = IBL.strategy === "auto" ? `, here ${STRATEGY_TITLES[chosen]}` : "";
     const numbers = IBL.sobol ? "Sobol'" : "random";
     const text = this.error || `${this.samples} samples per pixel${done} · ${STRATEGY_TITLES[IBL.strategy]}${runs} · ${numbers}` +
