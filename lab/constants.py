@@ -11,6 +11,7 @@ MAX_LIGHTS = 8  # directional lights a view takes at once (uniform array sizes)
 GRAZING_DEG = 87.0  # plots leave out |θo| beyond this when they scale (Ward diverges there)
 PLOT_DECADES = 3.0  # range of the log scale of the polar plot and the 3D lobe
 LOOP_LIMIT = 10_000  # iterations a loop of a model may run per invocation (the loop guard)
+SLIDER_STEPS = 1000  # positions of a parameter's slider (the app's and the page's)
 # Colours of models drawn together on the dark plots, in order: Okabe & Ito's colour-blind
 # safe set (black left out), each at 4:1 or more on the plots' grey (tests/test_a11y_colour.py).
 MODEL_COLORS = ("#56b4e9", "#e69f00", "#009e73", "#f0e442", "#cc79a7", "#d55e00")
@@ -24,6 +25,7 @@ def as_dict() -> dict[str, object]:
         "GRAZING_DEG": GRAZING_DEG,
         "PLOT_DECADES": PLOT_DECADES,
         "LOOP_LIMIT": LOOP_LIMIT,
+        "SLIDER_STEPS": SLIDER_STEPS,
     }
 
 

@@ -175,6 +175,7 @@ def javascript():
         "rgb": RGB_TEXTS,
         "slider_value": [(jsonable(p), k) for p in float_params for k in positions],
         "slider_position": [(jsonable(p), v) for p, v in samples],
+        "slider_steps": manifest()["constants"]["SLIDER_STEPS"],  # as the page gets it
         "library": library_files(),
         "peak": [(THETA_O, lobe, GRAZING_DEG) for lobe in LOBES],
         "radius": [(f, top, log, PLOT_DECADES) for f, top, log in RADII],

@@ -61,3 +61,22 @@ def test_mirror_has_no_series(page):
     page.evaluate("brdfLab.setModel(0, 'mirror')")
     page.evaluate("brdfLab.setViews(['sh'])")
     assert page.evaluate("brdfLab.readView(0, 'sh')")["coefficients"] == []
+
+
+def test_while_a_slider_moves_the_series_waits_as_on_the_desktop(page):
+    """With the hand on a slider (lab.fast) the view follows with the lobe alone and says
+    the series comes when the slider stops (the probe and projection were most of its
+    frame); once it stops, the series is the new lobe's, not the one before."""
+    page.evaluate("([n, v]) => brdfLab.setModel(0, n, v)", ["phong", {"ke": 40.0}])
+    page.evaluate("brdfLab.setViews(['sh'])")
+    before = np.array(page.evaluate("brdfLab.readView(0, 'sh')")["coefficients"])
+    note = page.locator(".view[data-view='spherical harmonics'] .view-note")
+    page.evaluate(
+        "(() => { const p = brdfLab.panel(0); p.values.ke = 200; brdfLab.state.fast = true; "
+        "p.render(); })()"
+    )
+    assert note.inner_text() == "series and error follow when the slider stops"
+    after = page.evaluate("brdfLab.readView(0, 'sh')")  # the hand stops: full quality
+    assert note.inner_text().startswith("L = ")
+    assert not np.allclose(np.array(after["coefficients"]), before, atol=1e-6)
+    assert after["errors"][8] > 0 and page.errors == []

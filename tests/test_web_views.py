@@ -13,6 +13,7 @@ from webpage import open_page
 from lab.constants import LUMA, PLOT_DECADES
 from lab.models import load_model
 from lab.render import Light, direction
+from lab.views import albedo as albedo_spec
 from lab.web.browser import chromium_path
 
 pytestmark = pytest.mark.skipif(
@@ -72,8 +73,12 @@ def test_albedo_matches_desktop_and_flags_gain(page, renderer, name, values):
     page.evaluate("brdfLab.setViews(['albedo'])")
     out = page.evaluate("brdfLab.readView(0, 'albedo')")
     thetas = np.array(out["thetas"])
-    np.testing.assert_allclose(thetas, np.arange(0, 90, 2.5))
-    desktop = renderer.albedo(load_model(name), values, thetas, phi_i=20.0, samples=192, wedges=48)
+    full = albedo_spec.FULL  # the app's full quality, the page's from the view's page data
+    np.testing.assert_allclose(thetas, albedo_spec.thetas(full))
+    assert thetas[0] == 0 and thetas[-1] == 87.5  # 2.5° steps short of grazing
+    desktop = renderer.albedo(
+        load_model(name), values, thetas, phi_i=20.0, samples=full["samples"], wedges=full["wedges"]
+    )
     assert_close(np.array(out["rgb"]), desktop, f"{name} albedo")
     gain = bool((desktop.max(axis=1) > 1 + 1e-3).any())
     assert out["gain"] == gain

@@ -24,9 +24,10 @@ from PyQt6.QtWidgets import (
 )
 
 from lab.app.state import LabState, ModelState
+from lab.constants import SLIDER_STEPS
 from lab.models import ModelError, Param
 
-STEPS = 1000  # slider resolution
+STEPS = SLIDER_STEPS  # slider resolution, the page's too (lab/constants.py)
 
 
 def slider_position(param: Param, value: float) -> int:

@@ -1,7 +1,7 @@
 // The controls of a model's parameters, built from its header: a slider with a text box
 // (float), a colour picker (color), a checkbox (bool) or a menu (enum).
 import { formatG } from "./header.js";
-import { SLIDER_STEPS, parseValue, sliderToValue, valueToSlider } from "./values.js";
+import { parseValue, sliderToValue, valueToSlider } from "./values.js";
 import { el } from "./dom.js";
 import { round } from "./state.js";
 
@@ -17,7 +17,7 @@ export const fromHex = (hex) => [1, 3, 5].map((i) => round(parseInt(hex.slice(i,
 
 /** The row of controls of parameter `p` (slider and text box, colour, checkbox or menu),
  * showing `values[p.name]`; `set(value)` takes what the student chose. */
-export function paramControl(p, values, set) {
+export function paramControl(p, values, set, steps) {
   const range = p.kind === "float"
     ? ` (${formatG(p.minimum)} to ${formatG(p.maximum)}${p.scale === "log" ? ", log slider" : ""})`
     : p.kind === "color" ? " (r,g,b each 0 to 1)" : "";
@@ -25,14 +25,14 @@ export function paramControl(p, values, set) {
   const label = el("label", { title: tip }, p.name);
   const row = el("div", { class: `param param-${p.kind}`, "data-param": p.name, title: tip }, label);
   if (p.kind === "float") {
-    const slider = el("input", { type: "range", min: 0, max: SLIDER_STEPS, step: 1 });
+    const slider = el("input", { type: "range", min: 0, max: steps, step: 1 });
     const box = el("input", { type: "text", class: "value", size: 6 });
     const show = () => {
-      slider.value = valueToSlider(p, values[p.name]);
+      slider.value = valueToSlider(p, values[p.name], steps);
       box.value = formatG(round(values[p.name]));
     };
     slider.addEventListener("input", () => {
-      set(round(sliderToValue(p, Number(slider.value))));
+      set(round(sliderToValue(p, Number(slider.value), steps)));
       box.value = formatG(values[p.name]);
     });
     box.addEventListener("change", () => {

@@ -178,7 +178,7 @@ export class Panel {
     this.values = { ...defaults(this.model), ...values };
     this.formula.append(el("strong", {}, this.model.title || name),
       ...this.model.formula.map((f) => el("code", {}, f)));
-    for (const p of this.model.params) this.controls.append(paramControl(p, this.values, (value) => this.setValue(p, value)));
+    for (const p of this.model.params) this.controls.append(paramControl(p, this.values, (value) => this.setValue(p, value), this.lab.constants.SLIDER_STEPS));
     if (this.lab.embed) showOnly(this.lab.show);
   }
 
@@ -189,7 +189,7 @@ export class Panel {
     this.lab.requestRender();
   }
 
-  /** Moves the slider of `name` to a position (0..1000) as a user would. */
+  /** Moves the slider of `name` to a position (0..SLIDER_STEPS) as a user would. */
   moveSlider(name, position) {
     const slider = $(`[data-param="${name}"] input[type=range]`, this.root);
     slider.value = position;

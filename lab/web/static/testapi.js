@@ -1,6 +1,5 @@
 // The page's API for tests, slides and benchmarks (window.brdfLab): read what the page
 // drew as floats, set models, settings and lights, and time frames.
-import { SLIDER_STEPS } from "./values.js";
 import { addLight, buildLights, setLight, showAmbient } from "./lights.js";
 import { addPanel, fitEmbed } from "./panels.js";
 import { addModelText } from "./files.js";
@@ -137,7 +136,7 @@ export function installTestApi(lab, ready) {
       lab.fast = true;
       for (let k = 0; k < steps; k++) {
         const start = performance.now();
-        lab.panels[i].moveSlider(name, Math.round((SLIDER_STEPS * ((k * 37) % steps)) / steps));
+        lab.panels[i].moveSlider(name, Math.round((lab.constants.SLIDER_STEPS * ((k * 37) % steps)) / steps));
         renderAll();
         lab.panels[i].gl.finish();
         times.push(performance.now() - start);

@@ -6,7 +6,7 @@
 // without a server.
 import { PY_FLOAT, formatG } from "./header.js";
 
-export const SLIDER_STEPS = 1000;
+// A slider has `steps` positions: lab/constants.py SLIDER_STEPS, the manifest's constants.
 
 /** Python's float() of one token: surrounding blanks allowed, NaN where Python raises. */
 export function pyNumber(token) {
@@ -50,17 +50,17 @@ export function parseRgb(text) {
   return rgb.length === 3 && rgb.every((c) => Number.isFinite(c) && c >= 0) ? rgb : null;
 }
 
-/** A slider's position (0..SLIDER_STEPS) -> the value, linear or log as the header says. */
-export function sliderToValue(p, position) {
-  const t = position / SLIDER_STEPS;
+/** A slider's position (0..steps) -> the value, linear or log as the header says. */
+export function sliderToValue(p, position, steps) {
+  const t = position / steps;
   if (p.scale === "log") return Math.exp(Math.log(p.minimum) + t * (Math.log(p.maximum) - Math.log(p.minimum)));
   return p.minimum + t * (p.maximum - p.minimum);
 }
 
-/** Where `value` sits on the slider (clamped to its ends). */
-export function valueToSlider(p, value) {
+/** Where `value` sits on a slider of `steps` positions (clamped to its ends). */
+export function valueToSlider(p, value, steps) {
   const t = p.scale === "log"
     ? (Math.log(value) - Math.log(p.minimum)) / (Math.log(p.maximum) - Math.log(p.minimum))
     : (value - p.minimum) / (p.maximum - p.minimum);
-  return Math.round(Math.min(Math.max(t, 0), 1) * SLIDER_STEPS);
+  return Math.round(Math.min(Math.max(t, 0), 1) * steps);
 }
