@@ -61,9 +61,10 @@ def load_any_model(args):
 
 def load_measured(name: str, table: str | None, settings: list[str], command: str = "render"):
     """The `measured` model for `render/eval measured --table FILE.binary` (lab.measured)."""
-    if name != "measured":
+    if name != "measured" and not (table and name.endswith(".glsl")):
         raise UsageError(
-            f"--table is for the measured model: write "
+            f"--table is for the measured model (or a .glsl file that declares "
+            f"'uniform highp sampler3D u_table;'): write "
             f"'brdf-lab {command} measured --table {table}', not {name!r}"
         )
     if not table:
@@ -75,9 +76,13 @@ def load_measured(name: str, table: str | None, settings: list[str], command: st
         raise UsageError(
             f"{table}: no such file (make one with 'brdf-lab tabulate MODEL -o {table}')"
         )
+    from lab.models import ModelError
     from lab.sources import open_model
 
-    model = open_model("measured", table)
+    try:
+        model = open_model(name, table)
+    except ModelError as err:
+        raise UsageError(str(err)) from None
     return model, model.parse_settings(settings or [])
 
 

@@ -3,11 +3,14 @@
 - a library name (`phong`), or a `.glsl` model file;
 - a BRDF Explorer `.brdf` file;
 - a MERL `.binary` table, opened as the `measured` model (`table=` gives the table
-  separately, as `render measured --table FILE.binary` does).
+  separately, as `render measured --table FILE.binary` does); with a model file that
+  declares `uniform highp sampler3D u_table;` (exercise 12's lookup), the table is bound
+  to it.
 """
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from lab.models import Model, ModelError, load_model
@@ -18,11 +21,9 @@ MEASURED = "measured"  # the model that reads a measured table
 def open_model(spec: str | Path, table: str | Path | None = None) -> Model:
     """The model `spec` names; `table` is the data file of the measured model."""
     text = str(spec)
+    if table is not None and text != MEASURED:
+        return _reading_table(spec, table)
     if table is not None or text == MEASURED:
-        if text != MEASURED:
-            raise ModelError(
-                f"a table is for the measured model: open {MEASURED!r} with it, not {text!r}"
-            )
         if table is None:
             raise ModelError(
                 "the measured model needs its data: open a MERL .binary table "
@@ -47,6 +48,22 @@ def open_with_settings(spec: str | Path, settings: list[str] | None) -> tuple[Mo
     """The model `spec` names and its values from `NAME=VALUE` strings (e.g. `--set`)."""
     model = open_model(spec)
     return model, model.parse_settings(settings or [])
+
+
+def _reading_table(spec: str | Path, table: str | Path) -> Model:
+    """A model file that declares the table's sampler (exercise 12's lookup), bound to it."""
+    from lab.measured.merl import TABLE_UNIFORM
+
+    model = load_model(spec)
+    if not re.search(rf"\buniform\s+(?:highp\s+)?sampler3D\s+{TABLE_UNIFORM}\s*;", model.code):
+        raise ModelError(
+            f"a table is for the measured model, or for a model file that declares "
+            f"'uniform highp sampler3D {TABLE_UNIFORM};': open {MEASURED!r} with it, "
+            f"not {str(spec)!r}"
+        )
+    from lab.measured.model import with_table
+
+    return with_table(model, _measured(table))
 
 
 def _measured(table: str | Path) -> Model:

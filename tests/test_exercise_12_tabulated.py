@@ -296,3 +296,24 @@ def test_any_kind_reads_a_table_the_check_names(grader):
     want = grader.renderer.eval_angles(measured, {"interpolation": "linear"}, polar.angles(check))
     np.testing.assert_array_equal(got, want)
     assert got.max() > 0.1
+
+
+def test_the_cli_draws_a_file_that_reads_a_table(tmp_path, capsys):
+    """`render FILE.glsl --table T.binary` binds the table to the file's u_table: the solution
+    draws what `render measured --table` draws; a file without the sampler is told why."""
+    from PIL import Image
+
+    from lab.cli import main
+    from lab.measured.merl import write_merl
+    from lab.measured.tabulate import tabulate
+
+    table = write_merl(tabulate("ggx", {"alpha": 0.25}), tmp_path / "t.binary")  # MERL bins
+    for name, model in (("mine", str(EXERCISE.solution)), ("lab", "measured")):
+        out = tmp_path / f"{name}.png"
+        assert main(["render", model, "--table", str(table), "--size", "96", "-o", str(out)]) == 0
+    mine, lab = (np.asarray(Image.open(tmp_path / f"{n}.png")) for n in ("mine", "lab"))
+    assert mine.std() > 5.0  # a lit sphere, not black
+    np.testing.assert_array_equal(mine, lab)
+    phong = ROOT / "shaders" / "brdfs" / "phong.glsl"
+    assert main(["render", str(phong), "--table", str(table), "-o", str(tmp_path / "x.png")]) == 2
+    assert "uniform highp sampler3D u_table" in capsys.readouterr().err

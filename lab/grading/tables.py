@@ -17,16 +17,16 @@ from __future__ import annotations
 import math
 import zlib
 from collections import OrderedDict
-from dataclasses import dataclass, fields, make_dataclass
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from lab.grading.spec import ExerciseError
-from lab.measured.merl import MERL_DIMS
+from lab.measured.merl import MERL_DIMS, TABLE_UNIFORM
 from lab.models import Model, ModelError, load_model, model_names
 
-UNIFORM = "u_table"  # the sampler a table is bound to unless the check says otherwise
+UNIFORM = TABLE_UNIFORM  # the sampler a table is bound to unless the check says otherwise
 KEYS = ("model", "params", "ranges", "noise", "dims", "uniform")
 _CACHE = 3  # tables kept per process (about 50 MB each at the MERL size: data and texture)
 
@@ -197,44 +197,13 @@ def measured(renderer, spec: TableSpec):
     return found
 
 
-def _bind(self, ctx) -> dict[str, object]:
-    """Bind the table (and whatever the model binds itself) before a draw."""
-    from lab.measured.model import TABLE_UNIT
-
-    inner = getattr(super(type(self), self), "bind", None)
-    uniforms = dict(inner(ctx)) if inner is not None else {}
-    self.table_source.texture(ctx).use(TABLE_UNIT)
-    return {**uniforms, self.table_uniform: TABLE_UNIT}
-
-
-_classes: dict[type, type] = {}
-
-
-def _tabled_class(cls: type) -> type:
-    """A subclass of the model's class that also binds a table (dataclasses.replace keeps
-    it, so the diagnosis's instrumented copies of the model read the table too)."""
-    if cls not in _classes:
-        _classes[cls] = make_dataclass(
-            f"Tabled{cls.__name__}",
-            [("table_source", Any, None), ("table_uniform", str, UNIFORM)],
-            bases=(cls,),
-            namespace={"bind": _bind},
-        )
-    return _classes[cls]
-
-
 def bound(renderer, model: Model, check) -> Model:
     """`model` bound to the check's table (the first of its `table` list: hidden mode has
     drawn one already); the model itself where the check reads no table."""
     specs = getattr(check, "table", ())
     if not specs:
         return model
+    from lab.measured.model import with_table
+
     spec = specs[0]
-    source = measured(renderer, spec)
-    base = type(model)
-    if base in _classes.values():
-        if model.table_source is source and model.table_uniform == spec.uniform:
-            return model
-        base = base.__mro__[1]
-    values = {f.name: getattr(model, f.name) for f in fields(base) if f.init}
-    return _tabled_class(base)(**values, table_source=source, table_uniform=spec.uniform)
+    return with_table(model, measured(renderer, spec), spec.uniform)

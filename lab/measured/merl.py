@@ -25,6 +25,7 @@ import numpy as np
 from lab.models import ModelError
 
 MERL_DIMS = (90, 90, 180)
+TABLE_UNIFORM = "u_table"  # the sampler a model file declares to read a table (exercise 12)
 SCALE = np.array([1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0])
 HEADER_BYTES = 12
 MAX_DIM = 4096  # a header larger than this is not a BRDF table but a misread file
