@@ -207,3 +207,54 @@ def bound(renderer, model: Model, check) -> Model:
 
     spec = specs[0]
     return with_table(model, measured(renderer, spec), spec.uniform)
+
+
+# How far a correct float32 program may place a pair's angles (radians): GLSL leaves acos
+# and asin's precision to the driver, and Mesa's llvmpipe (the grader's) is off by up to
+# 1.6e-4 (acos) and 3.9e-4 (asin) in mid-range, against 3e-6 for atan. theta_h's first
+# bins are ten thousand times narrower than that, so there the allowance is relative (what
+# atan keeps; acos(N.H) loses the peak's bins to the cosine's rounding, a mistake the
+# handout teaches) plus float32's absolute error.
+ANGLE = 4e-4
+THETA_H_RELATIVE = 4e-4
+THETA_H_ABSOLUTE = 2e-6
+SPREAD_GROW = 2.0
+
+
+def spread(check, angles: np.ndarray) -> np.ndarray | None:
+    """(n, 3) how far a correct program's trilinear lookup of the check's table may be from
+    the exact one at each row (degrees theta_i, phi_i, theta_o, phi_o): the lookup's change
+    when each of theta_h, theta_d and phi_d moves by what float32 arithmetic and the driver's
+    inverse trigonometry may move it. None where the check reads no table or the table has
+    not been made yet (the grader makes it when it renders the check)."""
+    specs = getattr(check, "table", ())
+    if not specs:
+        return None
+    spec = specs[0]
+    found = _tables.get((spec.model, spec.params, spec.noise, spec.dims))
+    if found is None or found.table is None:
+        return None
+    from lab import reference
+    from lab.measured.merl import continuous_index, half_diff, interpolate
+
+    theta = np.radians(np.asarray(angles, dtype=np.float64))
+    L = reference.direction(theta[:, 0], theta[:, 1])
+    V = reference.direction(theta[:, 2], theta[:, 3])
+    rgb = np.maximum(found.table.rgb, 0.0)
+    exact = list(half_diff(L, V))
+    base = interpolate(rgb, continuous_index(*exact, spec.dims), spec.dims)
+    moves = (THETA_H_RELATIVE * exact[0] + THETA_H_ABSOLUTE, ANGLE, ANGLE)
+    out = np.zeros_like(base)
+    for axis, move in enumerate(moves):
+        change = np.zeros_like(base)
+        for sign in (1.0, -1.0):
+            moved = list(exact)
+            moved[axis] = moved[axis] + sign * move
+            if axis < 2:  # theta below 0 is theta 0 (phi_d wraps)
+                moved[axis] = np.maximum(moved[axis], 0.0)
+            value = interpolate(rgb, continuous_index(*moved, spec.dims), spec.dims)
+            change = np.maximum(change, np.abs(value - base))
+        out += change
+    below = (L[:, 2] <= 0.0) | (V[:, 2] <= 0.0)
+    out[below] = 0.0
+    return SPREAD_GROW * out

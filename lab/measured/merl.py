@@ -243,27 +243,33 @@ def lookup(table: MerlTable, L: np.ndarray, V: np.ndarray, filter: str = "neares
         h, d, p = bin_index(*angles, dims)
         out = rgb[h, d, p]
     elif filter == "linear":
-        coords = continuous_index(*angles, dims)
-        lower, frac = [], []
-        for axis, (c, n) in enumerate(zip(coords, dims, strict=True)):
-            c = c - 0.5
-            if axis < 2:
-                c = np.clip(c, 0.0, n - 1)
-            base = np.floor(c)
-            lower.append(base.astype(np.int64))
-            frac.append(c - base)
-        out = np.zeros((len(L), 3))
-        for corner in range(8):
-            bits = [(corner >> k) & 1 for k in range(3)]
-            index = []
-            weight = np.ones(len(L))
-            for axis, n in enumerate(dims):
-                i = lower[axis] + bits[axis]
-                i = np.minimum(i, n - 1) if axis < 2 else np.mod(i, n)
-                index.append(i)
-                weight *= frac[axis] if bits[axis] else 1.0 - frac[axis]
-            out += weight[:, None] * rgb[index[0], index[1], index[2]]
+        out = interpolate(rgb, continuous_index(*angles, dims), dims)
     else:
         raise ValueError(f"filter must be nearest or linear, not {filter!r}")
     above = (L[:, 2] > 0.0) & (V[:, 2] > 0.0)
     return np.where(above[:, None], out, 0.0)
+
+
+def interpolate(rgb: np.ndarray, coords, dims) -> np.ndarray:
+    """(n, 3) trilinear values between bin centres at positions `coords` (bin units, as
+    continuous_index gives them): clamped in theta, periodic in phi_d."""
+    lower, frac = [], []
+    for axis, (c, n) in enumerate(zip(coords, dims, strict=True)):
+        c = np.asarray(c, dtype=np.float64) - 0.5
+        if axis < 2:
+            c = np.clip(c, 0.0, n - 1)
+        base = np.floor(c)
+        lower.append(base.astype(np.int64))
+        frac.append(c - base)
+    out = np.zeros((len(lower[0]), 3))
+    for corner in range(8):
+        bits = [(corner >> k) & 1 for k in range(3)]
+        index = []
+        weight = np.ones(len(lower[0]))
+        for axis, n in enumerate(dims):
+            i = lower[axis] + bits[axis]
+            i = np.minimum(i, n - 1) if axis < 2 else np.mod(i, n)
+            index.append(i)
+            weight *= frac[axis] if bits[axis] else 1.0 - frac[axis]
+        out += weight[:, None] * rgb[index[0], index[1], index[2]]
+    return out

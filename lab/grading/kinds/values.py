@@ -7,7 +7,7 @@ import functools
 
 import numpy as np
 
-from lab.grading import diagnosis
+from lab.grading import diagnosis, tables
 from lab.grading.compare import compare_values
 from lab.grading.kinds import CheckKind
 from lab.grading.result import CheckResult
@@ -121,6 +121,11 @@ class ValueKind(CheckKind):
         if expected.ndim != 2 or expected.shape[1] < 3 or raw.shape[:1] != expected.shape[:1]:
             return None
         tolerance = row_tolerance(check, angles, expected[:, :3])
+        lookup = tables.spread(check, angles)  # a table's lookup is as well-conditioned
+        if lookup is not None and lookup.shape == expected[:, :3].shape:
+            plain = check.atol + check.rtol * np.abs(expected[:, :3])
+            base = plain if tolerance is None else tolerance
+            tolerance = np.maximum(base, plain + lookup).astype(np.float32)
         if tolerance is None or expected.shape[1] == 3:
             return tolerance
         pad = check.atol + check.rtol * np.abs(expected[:, 3:])  # channels past RGB as before
