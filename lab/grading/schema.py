@@ -166,7 +166,15 @@ CHECK: tuple[Key, ...] = (
         "integer",
         1,
         "fixes the random directions or samples",
-        ("probe", "chi_square", "pdf_integral", "ibl_render", "properties", "bin_edges"),
+        (
+            "probe",
+            "chi_square",
+            "pdf_integral",
+            "ibl_render",
+            "properties",
+            "bin_edges",
+            "object",
+        ),
     ),
     Key(
         "rtol",
@@ -197,11 +205,25 @@ CHECK: tuple[Key, ...] = (
         ("polar", "chi_square", "pdf_integral", "ibl_render"),
     ),
     Key("view", "string", "sphere", "the grading template the sphere is drawn with", ("sphere",)),
-    Key("lights", "lights", [[45.0, 0.0]], "theta, phi (degrees) and RGB per light", ("sphere",)),
+    Key(
+        "lights",
+        "lights",
+        [[45.0, 0.0]],
+        "theta, phi (degrees) and RGB per light",
+        ("sphere", "object"),
+    ),
     Key("ambient", "rgb", [0.0, 0.0, 0.0], "ambient light colour", ("sphere",)),
-    Key("size", "integer", 128, "image side in pixels", ("sphere", "ibl_render")),
-    Key("threshold", "number", 5.0, "per-channel difference allowed, in 1/255", ("sphere",)),
-    Key("max_fraction", "number", 0.001, "share of pixels allowed past threshold", ("sphere",)),
+    Key("size", "integer", 128, "image side in pixels", ("sphere", "ibl_render", "object")),
+    Key(
+        "threshold", "number", 5.0, "per-channel difference allowed, in 1/255", ("sphere", "object")
+    ),
+    Key(
+        "max_fraction",
+        "number",
+        0.001,
+        "share of pixels allowed past threshold",
+        ("sphere", "object"),
+    ),
 )
 
 # The keys each built-in kind adds (CheckKind.fields), in words.
@@ -220,6 +242,10 @@ FIELD_MEANINGS: dict[tuple[str, str], str] = {
     ("properties", "target"): "the model tested: a library model or a .glsl file in the folder",
     ("properties", "albedo_rows"): "viewing angles directional_albedo is run at (1 to 64)",
     ("properties", "grazing_rows"): "how many of them lie between 80 and 88 degrees",
+    ("object", "shape"): "the lit object: torus, sphere, rounded box or bumpy sphere",
+    ("object", "yaw"): "the object's turn about the vertical, degrees (hidden mode draws it)",
+    ("object", "pitch"): "its tilt towards the viewer, degrees",
+    ("object", "textures"): "sampler2D name = PNG file in the folder; hidden mode generates them",
 }
 
 MISTAKE: tuple[Key, ...] = (
