@@ -33,6 +33,7 @@ FUNCTION = "vec3 SVBRDF(vec2 uv, vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"
 SAMPLER_NAME = re.compile(r"^[A-Za-z_]\w*$")
 FIRST_UNIT = 1  # texture units from here on: unit 0 is left to models that bind data
 _FILES: dict[tuple[str, float], np.ndarray] = {}  # committed textures, by path and mtime
+_GENERATED: dict[tuple, dict[str, np.ndarray]] = {}  # hidden mode's, by seed and files
 
 
 def read_texture(path: str) -> np.ndarray:
@@ -128,14 +129,20 @@ class ObjectKind(SphereKind):
         return int(check.seed) != check.options.get("committed_seed", int(check.seed))
 
     def images(self, check: Check) -> dict[str, np.ndarray]:
-        """The RGBA uint8 texture bound to each sampler: the files, or hidden mode's own."""
-        out = {}
-        for index, (sampler, path) in enumerate(sorted(check.options["textures"].items())):
-            image = read_texture(path)
-            out[sampler] = (
-                generated_texture(int(check.seed), index, image) if self.hidden(check) else image
-            )
-        return out
+        """The RGBA uint8 texture bound to each sampler: the files, or hidden mode's own
+        (made once per seed and process: the solution and the student's render share them)."""
+        files = sorted(check.options["textures"].items())
+        if not self.hidden(check):
+            return {sampler: read_texture(path) for sampler, path in files}
+        key = (int(check.seed), tuple(files))
+        if key not in _GENERATED:
+            if len(_GENERATED) > 16:
+                _GENERATED.clear()
+            _GENERATED[key] = {
+                sampler: generated_texture(int(check.seed), index, read_texture(path))
+                for index, (sampler, path) in enumerate(files)
+            }
+        return _GENERATED[key]
 
     def turn(self, check: Check) -> tuple[float, float]:
         """yaw and pitch in radians; hidden mode draws the yaw from the seed."""
