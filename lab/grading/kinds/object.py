@@ -90,7 +90,7 @@ def generated_texture(seed: int, index: int, like: np.ndarray) -> np.ndarray:
 
 class ObjectKind(SphereKind):
     name = "object"
-    order = 25
+    order = 70
     fields = {"shape": "torus", "yaw": 35.0, "pitch": 30.0, "textures": {}}
     captions = {**SphereKind.captions}
     alts = {
