@@ -238,6 +238,10 @@ def graded(tmp_path_factory) -> dict:
     for label, path in measure.submissions().items():
         if label.startswith("wrong/"):
             tasks["batch", label, None] = (Task(EXERCISE, path), "")
+    unread = tmp / "unread" / EXERCISE.student_file  # no stored mistake: the kind's own words
+    unread.parent.mkdir()
+    unread.write_text(solution.replace("texture(roughness_map, uv).r", "0.2"), encoding="utf-8")
+    tasks["unread"] = (Task(EXERCISE, unread, 3), "")
     with Pool(2, timeout=120.0) as pool:
         pool.run([task for task, _ in tasks.values()])
     return tasks
@@ -272,3 +276,9 @@ def test_the_wrong_submissions_are_named(graded):
         if key[0] == "batch" and key[1].startswith("wrong/") and not measure.named(key[1], task)
     ]
     assert not unnamed, unnamed
+
+
+def test_a_texture_the_file_never_reads_is_named(graded):
+    task = graded["unread"][0]
+    said = [r.diagnosis for r in task.checks() if not r.passed]
+    assert said and all("never reads roughness_map" in s for s in said), said

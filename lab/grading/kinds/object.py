@@ -182,6 +182,25 @@ class ObjectKind(SphereKind):
     def where(self, check: Check, x: int, y: int) -> str:
         return f"pixel ({x}, {check.size - 1 - y}) of the object"
 
+    def explain(self, explainer, exercise, check: Check, model, expected, got, live) -> str:
+        """Where no known mistake matched: the textures the program never reads (the
+        driver drops a sampler uniform no path of the code samples)."""
+        renderer = explainer.grader.renderer
+        resolved = model.resolve(check.params)
+        enums = {k: v for k, v in resolved.items() if model.params[k].kind == "enum"}
+        preamble = f"const int LIGHT_COUNT = {len(check.lights)};"
+        try:
+            program = renderer.program(model, VIEW, enums, preamble)
+        except Exception:  # noqa: BLE001 - a compile error is reported by the check itself
+            return ""
+        unread = [name for name in sorted(check.options["textures"]) if name not in program]
+        if not unread:
+            return ""
+        return (
+            f"your file never reads {', '.join(unread)}: each texture holds a parameter of "
+            "the material (the handout's table), read it with texture(sampler, uv)"
+        )
+
     def practice(self, exercise, check: Check, values) -> dict | None:
         return None  # the page has no textured object yet: left out of its practice mode
 
