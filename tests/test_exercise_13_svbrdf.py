@@ -196,6 +196,13 @@ def test_a_broken_exercise_file_says_what_to_fix(tmp_path, old, new, said):
         load_exercise(folder)
 
 
+def test_a_texture_that_is_no_png_is_named(tmp_path):
+    folder = _exercise_copy(tmp_path, "yaw = 35.0", "yaw = 35.0")
+    (folder / "textures" / "mask.png").write_bytes(b"not a png")
+    with pytest.raises(ExerciseError, match="mask_map = 'textures/mask.png': cannot be read"):
+        load_exercise(folder)
+
+
 def test_bad_submissions_fail_with_a_message_and_never_crash(grader, tmp_path):
     """Without the sampler declarations: a compile error at the student's line; a file
     without SVBRDF is refused before rendering; NaN pixels are named as such."""

@@ -121,6 +121,15 @@ class ObjectKind(SphereKind):
                     f"{here}: textures.{sampler} = {file!r}: give a .png file of the exercise "
                     'folder, relative to exercise.toml (for example "textures/albedo.png")'
                 )
+            try:
+                size = read_texture(str(path)).shape[:2]
+            except (OSError, ValueError) as err:  # PIL's UnidentifiedImageError is an OSError
+                raise ExerciseError(
+                    f"{here}: textures.{sampler} = {file!r}: cannot be read as a PNG ({err}); "
+                    "save it again as an 8-bit grey or RGB PNG"
+                ) from None
+            if max(size) > 4096:
+                raise ExerciseError(f"{here}: textures.{sampler}: at most 4096 texels a side")
             files[sampler] = str(path)
         o["textures"] = files
         o["committed_seed"] = int(check.seed)  # a different seed: hidden mode, new textures
