@@ -204,8 +204,7 @@ def disassemble(code: str, exercise) -> str | None:
         source.write_text(before + _bound(code) + after, encoding="utf-8")
         try:
             steps = [
-                # --amb: a sampler the file declares (exercise 13's textures) gets a binding
-                ["glslangValidator", "-V", "--aml", "--amb", "-o", str(binary), str(source)],
+                ["glslangValidator", "-V", "--aml", "-o", str(binary), str(source)],
                 ["spirv-opt", "-O", str(binary), "-o", str(binary)],
                 ["spirv-dis", "--raw-id", "--no-header", str(binary)],
             ]
