@@ -140,6 +140,7 @@ EXERCISE: tuple[Key, ...] = (
     Key("checks", "tables", REQUIRED, "the graded checks, one [[checks]] table each"),
 )
 
+IMAGES = ("sphere", "object")  # the kinds that render a lit image and compare its pixels
 CHECK: tuple[Key, ...] = (
     Key("name", "string", REQUIRED, "unique name, shown to students (e.g. probe.grey)"),
     Key("kind", "string", REQUIRED, "the check kind: probe, sphere, polar, ... (see below)"),
@@ -205,25 +206,11 @@ CHECK: tuple[Key, ...] = (
         ("polar", "chi_square", "pdf_integral", "ibl_render"),
     ),
     Key("view", "string", "sphere", "the grading template the sphere is drawn with", ("sphere",)),
-    Key(
-        "lights",
-        "lights",
-        [[45.0, 0.0]],
-        "theta, phi (degrees) and RGB per light",
-        ("sphere", "object"),
-    ),
+    Key("lights", "lights", [[45.0, 0.0]], "theta, phi (degrees) and RGB per light", IMAGES),
     Key("ambient", "rgb", [0.0, 0.0, 0.0], "ambient light colour", ("sphere",)),
     Key("size", "integer", 128, "image side in pixels", ("sphere", "ibl_render", "object")),
-    Key(
-        "threshold", "number", 5.0, "per-channel difference allowed, in 1/255", ("sphere", "object")
-    ),
-    Key(
-        "max_fraction",
-        "number",
-        0.001,
-        "share of pixels allowed past threshold",
-        ("sphere", "object"),
-    ),
+    Key("threshold", "number", 5.0, "per-channel difference allowed, in 1/255", IMAGES),
+    Key("max_fraction", "number", 0.001, "share of pixels allowed past threshold", IMAGES),
 )
 
 # The keys each built-in kind adds (CheckKind.fields), in words.
