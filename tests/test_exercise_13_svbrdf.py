@@ -110,6 +110,19 @@ def test_hidden_textures_are_new_and_keep_size_character_and_range():
     assert O.KIND.turn(check)[0] == pytest.approx(np.radians(check.options["yaw"]))
 
 
+def test_the_committed_textures_are_what_make_textures_writes(tmp_path, monkeypatch):
+    from PIL import Image
+
+    spec = importlib.util.spec_from_file_location("make_textures_13", HERE / "make_textures.py")
+    make = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(make)
+    monkeypatch.setattr(make, "OUT", tmp_path)
+    make.main()
+    for path in sorted((EXERCISE.folder / "textures").glob("*.png")):
+        with Image.open(path) as old, Image.open(tmp_path / path.name) as new:
+            assert old.mode == new.mode and np.array_equal(np.asarray(old), np.asarray(new))
+
+
 def _scores(grader, readings: dict, seed: int | None) -> dict[str, tuple[float, list]]:
     """Each file's score at one setting (None: reference mode) and its failed checks;
     `readings`: name -> checks.prepare's reading of the file."""
