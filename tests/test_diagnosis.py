@@ -438,7 +438,7 @@ def test_stored_variants_fit_the_references():
         with np.load(exercise.references / VALUES_FILE) as refs:
             shapes = {k: refs[k].shape for k in refs.files}
         for check in exercise.checks:
-            if check.kind == "sphere":
+            if check.kind in ("sphere", "object"):  # image references
                 shapes[check.name] = read_png(exercise.references / f"{check.name}.png").shape
         with np.load(exercise.references / mistakes.VALUES) as data:
             for key in data.files:

@@ -258,6 +258,9 @@ def test_every_exercise_has_the_files_of_its_handout():
             assert {"chi_square", "pdf_integral", "ibl_render"} <= kinds, exercise.name
         elif kinds == {"properties"}:  # tests of the models linked with them (11)
             assert len({c.options["target"] for c in exercise.checks}) >= 5, exercise.name
+        elif kinds == {"object"}:  # a spatially varying BRDF on the textured object (13)
+            assert all(c.options["textures"] for c in exercise.checks), exercise.name
+            assert len({c.options["shape"] for c in exercise.checks}) >= 2, exercise.name
         else:
             assert "probe" in kinds and "sphere" in kinds
         assert all(c.pairs >= 256 for c in exercise.checks if c.kind == "probe")
@@ -277,7 +280,7 @@ def test_regenerated_references_match_the_committed_ones(tmp_path):
             for key in old.files:
                 np.testing.assert_allclose(new[key], old[key], rtol=1e-4, atol=1e-6, err_msg=key)
         for check in exercise.checks:
-            if check.kind == "sphere":
+            if check.kind in ("sphere", "object"):
                 old_image = read_png(exercise.references / f"{check.name}.png").astype(int)
                 new_image = read_png(mine / f"{check.name}.png").astype(int)
                 assert np.abs(old_image - new_image).max() <= 1, check.name

@@ -140,6 +140,7 @@ EXERCISE: tuple[Key, ...] = (
     Key("checks", "tables", REQUIRED, "the graded checks, one [[checks]] table each"),
 )
 
+IMAGES = ("sphere", "object")  # the kinds that render a lit image and compare its pixels
 CHECK: tuple[Key, ...] = (
     Key("name", "string", REQUIRED, "unique name, shown to students (e.g. probe.grey)"),
     Key("kind", "string", REQUIRED, "the check kind: probe, sphere, polar, ... (see below)"),
@@ -166,7 +167,15 @@ CHECK: tuple[Key, ...] = (
         "integer",
         1,
         "fixes the random directions or samples",
-        ("probe", "chi_square", "pdf_integral", "ibl_render", "properties", "bin_edges"),
+        (
+            "probe",
+            "chi_square",
+            "pdf_integral",
+            "ibl_render",
+            "properties",
+            "bin_edges",
+            "object",
+        ),
     ),
     Key(
         "rtol",
@@ -197,11 +206,11 @@ CHECK: tuple[Key, ...] = (
         ("polar", "chi_square", "pdf_integral", "ibl_render"),
     ),
     Key("view", "string", "sphere", "the grading template the sphere is drawn with", ("sphere",)),
-    Key("lights", "lights", [[45.0, 0.0]], "theta, phi (degrees) and RGB per light", ("sphere",)),
+    Key("lights", "lights", [[45.0, 0.0]], "theta, phi (degrees) and RGB per light", IMAGES),
     Key("ambient", "rgb", [0.0, 0.0, 0.0], "ambient light colour", ("sphere",)),
-    Key("size", "integer", 128, "image side in pixels", ("sphere", "ibl_render")),
-    Key("threshold", "number", 5.0, "per-channel difference allowed, in 1/255", ("sphere",)),
-    Key("max_fraction", "number", 0.001, "share of pixels allowed past threshold", ("sphere",)),
+    Key("size", "integer", 128, "image side in pixels", ("sphere", "ibl_render", "object")),
+    Key("threshold", "number", 5.0, "per-channel difference allowed, in 1/255", IMAGES),
+    Key("max_fraction", "number", 0.001, "share of pixels allowed past threshold", IMAGES),
 )
 
 # The keys each built-in kind adds (CheckKind.fields), in words.
@@ -220,6 +229,10 @@ FIELD_MEANINGS: dict[tuple[str, str], str] = {
     ("properties", "target"): "the model tested: a library model or a .glsl file in the folder",
     ("properties", "albedo_rows"): "viewing angles directional_albedo is run at (1 to 64)",
     ("properties", "grazing_rows"): "how many of them lie between 80 and 88 degrees",
+    ("object", "shape"): "the lit object: torus, sphere, rounded box or bumpy sphere",
+    ("object", "yaw"): "the object's turn about the vertical, degrees (hidden mode draws it)",
+    ("object", "pitch"): "its tilt towards the viewer, degrees",
+    ("object", "textures"): "sampler2D name = PNG file in the folder; hidden mode generates them",
 }
 
 MISTAKE: tuple[Key, ...] = (
@@ -427,7 +440,9 @@ def reference_markdown() -> str:
         "sliders) or the check's `ranges`; colours the check sets to 0 stay 0 and enum",
         "choices stay. Each light is drawn anew within its purpose, at a random azimuth;",
         "`seed` is drawn too. The solution is rendered live with the same draw, so hidden",
-        "mode needs `solutions/` beside `exercises/`.",
+        "mode needs `solutions/` beside `exercises/`. An `object` check's textures are",
+        "generated from the drawn seed (same size, grey or colour, within the committed",
+        "file's values) and its yaw is drawn.",
         "",
         "## Tables (`table`)",
         "",

@@ -15,16 +15,6 @@ out vec4 frag_color;
 
 void sv_assign(float sv_amount, vec3 sv_albedo);
 
-// Texture coordinates: around the torus' two circles, or longitude/latitude.
-vec2 lab_shape_uv(vec3 p) {
-    float u = precise_atan(p.z, p.x) / (2.0 * PI) + 0.5;
-    if (u_shape == 0) {
-        vec2 q = vec2(length(p.xz) - 0.72, p.y);
-        return vec2(u, precise_atan(q.y, q.x) / (2.0 * PI) + 0.5);
-    }
-    return vec2(u, angle_from_cos(p.y / max(length(p), 1e-6)) / PI);
-}
-
 // Procedural maps: a two-colour tiled albedo and wavy bands that vary the other parameters.
 vec3 lab_albedo_map(vec2 uv) {
     float tile = mod(floor(uv.x * 16.0) + floor(uv.y * 6.0), 2.0);

@@ -66,3 +66,14 @@ bool lab_object_surface(vec2 p, out vec3 ray, out vec3 q, out vec3 N, out vec3 X
     Y = cross(N, X);
     return true;
 }
+
+// Texture coordinates of the object-space point p (object.glsl, grade_object.glsl): around
+// the torus' two circles, or longitude and latitude. The tangent X above points along u.
+vec2 lab_shape_uv(vec3 p) {
+    float u = precise_atan(p.z, p.x) / (2.0 * PI) + 0.5;
+    if (u_shape == 0) {
+        vec2 q = vec2(length(p.xz) - 0.72, p.y);
+        return vec2(u, precise_atan(q.y, q.x) / (2.0 * PI) + 0.5);
+    }
+    return vec2(u, angle_from_cos(p.y / max(length(p), 1e-6)) / PI);
+}
