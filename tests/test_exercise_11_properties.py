@@ -160,9 +160,20 @@ def test_a_check_names_a_target_that_exists(tmp_path):
         load_exercise(folder)
 
 
-def test_the_page_leaves_the_exercise_out():
-    for check in EXERCISE.checks:
-        assert kind_of(check).practice(EXERCISE, check, {}) is None
+def test_the_page_gets_the_graders_rows_frame_and_measurement():
+    """Practice mode (static/properties.js) runs what the grader runs: its rows and frame,
+    the linked model's file, and the committed measurement it judges against."""
+    with np.load(EXERCISE.references / "values.npz") as values:
+        for check in EXERCISE.checks:
+            kind = kind_of(check)
+            entry = kind.practice(EXERCISE, check, values)
+            np.testing.assert_array_equal(entry["rows"], kind.rows(check))
+            np.testing.assert_array_equal(entry["frame"], kind.frame(check))
+            np.testing.assert_array_equal(entry["truth"], values[check.name][1])
+            linked = entry["linked_with"]
+            if "source" in linked:
+                assert linked["source"] == Path(check.options["target"]).read_text("utf-8")
+                assert linked["path"].startswith("exercises/11_brdf_properties/subjects/")
 
 
 @pytest.fixture(scope="module")

@@ -128,6 +128,7 @@ def exercise_entry(exercise: Exercise) -> dict:
         }
         if exercise.estimator
         else None,
+        "loop_limit": exercise.loop_limit,  # the loop guard's limit for the student's loops
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
         "grader_only": only_graded,

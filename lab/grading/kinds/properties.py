@@ -367,9 +367,31 @@ class PropertiesKind(CheckKind):
             f"measurement of the same model{more}</figcaption></figure>"
         ]
 
-    def practice(self, exercise, check: Check, values) -> None:
-        """The page's practice mode cannot link a test with a model yet: left out there."""
-        return None
+    def practice(self, exercise, check: Check, values) -> dict:
+        """What the page's properties.js needs to run the check as this kind does: the rows
+        and frame, the model the tests are linked with (a library model by name, a file of
+        the exercise by its text), and the grader's measurement of it (the committed
+        reference's second row: the page never measures, so its verdicts follow from the
+        same numbers)."""
+        target = check.options["target"]
+        if target.endswith(".glsl"):
+            path = Path(target)
+            linked_with = {
+                "name": path.stem,
+                "path": f"exercises/{exercise.name}/{path.relative_to(exercise.folder).as_posix()}",
+                "source": path.read_text(encoding="utf-8"),
+            }
+        else:
+            linked_with = {"name": target}
+        return {
+            "options": {**check.options, "target": linked_with["name"]},
+            "rows": self.rows(check).tolist(),
+            "frame": self.frame(check).tolist(),
+            "truth": np.asarray(values[check.name], np.float64)[1].tolist(),
+            "linked_with": linked_with,
+            "prototype": PROTOTYPE,
+            "reciprocal": RECIPROCAL,
+        }
 
 
 @functools.lru_cache(maxsize=256)

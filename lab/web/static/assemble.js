@@ -272,7 +272,8 @@ export function assembleFragment(model, view, files, { target = "300es", preambl
   for (const include of model.includes) addInclude(source, include, seen, model, files);
   const guarded = guardLoops(model.code);
   source.loops = guarded.lines.length; // none: the loop guard's flag stays 0, unread
-  source.add(loopGuardPrelude(guarded.lines.length, constants.LOOP_LIMIT), "<loop guard>");
+  // An exercise's submission may allow more (its exercise.toml's loop_limit).
+  source.add(loopGuardPrelude(guarded.lines.length, model.loopLimit ?? constants.LOOP_LIMIT), "<loop guard>");
   source.add(guarded.code, model.path);
   source.add(`const bool IS_DELTA = ${model.delta ? "true" : "false"};`, "<host>");
   source.add(

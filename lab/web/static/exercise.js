@@ -13,6 +13,7 @@ import { addPanel, removePanel } from "./panels.js";
 import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
+import { diagnoseProperties, runProperties } from "./properties.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -139,8 +140,8 @@ function loopFailure(check, panel, where) {
   const line = panel.lastLoop.line;
   const file = panel.model.path.split("/").pop();
   return { passed: false, message: `${file}:${line}: the loop at line ${line} did not end within ` +
-    `${Number(panel.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where}; check its exit condition ` +
-    "(on a GPU such a loop freezes the screen)" };
+    `${Number(panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where}; ` +
+    "check its exit condition (on a GPU such a loop freezes the screen)" };
 }
 
 /** stopped_where for a sphere pixel (x, y from the bottom, as read back). */
@@ -204,6 +205,11 @@ function checkValues(model, params) {
 
 /** Runs one check on the panel (its model is the submission); {passed, message, ...}. */
 export function runCheck(panel, check) {
+  if (check.kind === "properties") {
+    // The student's tests linked with the check's model, judged and diagnosed (properties.js).
+    const result = runProperties(panel, check);
+    return result.loop ? loopFailure(check, panel, result.loop) : result;
+  }
   const saved = panel.values;
   panel.values = checkValues(panel.model, check.params);
   try {
@@ -321,6 +327,7 @@ export class ExerciseMode {
         return { check, passed: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` };
       }
     });
+    if (!errors.length) diagnoseProperties(exercise, this.results); // across its checks
     this.runs++;
     this.show();
     return this.results;

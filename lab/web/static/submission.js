@@ -54,7 +54,8 @@ float PDF_BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return pdf_lobe(L, V, N
 /** The student's text as a model every view renders, named after the exercise. */
 export function buildSubmission(exercise, text, path, models) {
   checkFunctions(text, exercise.functions, path);
-  return { ...submission(exercise, text, path, models), exactTrig: true }; // as the grader's cos
+  // As the grader's: its cos, and the exercise's loop limit (exercise.toml's loop_limit).
+  return { ...submission(exercise, text, path, models), exactTrig: true, loopLimit: exercise.loop_limit };
 }
 
 function submission(exercise, text, path, models) {
@@ -82,5 +83,8 @@ function submission(exercise, text, path, models) {
     const given = stub.params.find((q) => q.name === p.name);
     return given ? { ...p, default: given.default } : p;
   });
+  // Checks that link the file with a model of their own (kinds/properties.py) leave its
+  // includes out: the panel compiles it with the stub's (a stand-in for what is linked).
+  if (exercise.checks.some((c) => c.linked_with)) model.includes = stub.includes;
   return model;
 }
