@@ -95,3 +95,117 @@ def test_properties_practice_gives_the_graders_verdicts_and_words(page, tmp_path
     else:
         assert not all(passed for passed, _ in graded.values())
     assert page.errors == []
+
+
+# -- ibl_render: exercise 10's render check (static/iblcheck.js) ----------------------------
+SAMPLER = "10_importance_sampling"
+SAMPLER_FILE = "blinn_phong_sampling.glsl"
+IBL = "ibl_render.grey_room"
+
+
+def test_ibl_statistics_equal_the_graders_on_the_same_arrays(page):
+    """iblcheck.js's judge_render, t_limit and nearest on the grader's own arrays (the
+    stored mistakes' renders and the reference): the grader's verdicts, words and figures."""
+    import base64
+
+    import numpy as np
+
+    from lab.grading import mistakes, sampling
+    from lab.grading.exercise import load_exercise
+    from lab.grading.kinds import kind_of
+
+    exercise = load_exercise(ROOT / "exercises" / SAMPLER)
+    check = next(c for c in exercise.checks if c.name == IBL)
+    kind = kind_of(check)
+    hints = mistakes.read_hints(exercise)
+    with np.load(exercise.references / "values.npz") as values:
+        reference = values[IBL]
+    with np.load(exercise.references / mistakes.VALUES) as data:
+        stored = {k.split("|", 1)[1]: data[k] for k in data.files if k.startswith(f"{IBL}|")}
+    # Besides: an unbiased estimator three times as noisy, and one with a NaN pixel.
+    noisy = reference.copy()
+    noisy[2, ..., 0] *= 9.0
+    broken = reference.copy()
+    broken[1, 16, 16, 1] = np.nan
+    renders = {"solution": reference, "noisy": noisy, "nan": broken, **stored}
+    js = page.evaluate(
+        """async ([name, arrays]) => {
+          const m = await import('./iblcheck.js');
+          const data = await (await fetch('exercises.json')).json();
+          const exercise = data.exercises.find((e) => e.name === '10_importance_sampling');
+          const check = exercise.checks.find((c) => c.name === name);
+          const luma = brdfLab.state.constants.LUMA;
+          const out = {};
+          for (const [key, text] of Object.entries(arrays)) {
+            const raw = new Float32Array(Uint8Array.from(atob(text), (c) => c.charCodeAt(0)).buffer);
+            const verdict = m.judgeRender(check, raw, luma);
+            out[key] = [verdict.passed, verdict.message, verdict.stats,
+              m.nearestRender(check, exercise, raw, luma)];
+          }
+          out.limits = [1, 2.5, 7, 31, 400].map((dof) => m.tLimit(check.z_normal, dof));
+          return out;
+        }""",
+        [IBL, {k: base64.b64encode(v.astype("<f4").tobytes()).decode() for k, v in renders.items()}],
+    )
+    passes, o = kind.passes(check), check.options
+    groups = sampling.Z_GROUPS + 1
+    for dof, limit in zip([1, 2.5, 7, 31, 400], js.pop("limits"), strict=True):
+        assert limit == pytest.approx(sampling.t_limit(o["alpha"], groups, dof), rel=1e-12)
+    verdicts = set()
+    for key, raw in renders.items():
+        ok, message, stats = sampling.judge_render(
+            raw, reference, o["samples"], passes, o["factor"], o["alpha"]
+        )
+        passed, words, figures, likely = js[key]
+        assert (passed, words) == (ok, message), key
+        for name, value in stats.items():
+            assert figures[name] == pytest.approx(value, rel=1e-9), (key, name)
+        found = kind.nearest(check, kind.stored(raw, check), reference, {
+            k: v for k, v in stored.items() if k in hints
+        })  # fmt: skip
+        assert likely == (f"Likely: {hints[found].rstrip('.')}." if found else ""), key
+        verdicts.add("passes" if ok else "bias" if "biased" in message else message[-30:])
+    assert len(verdicts) == 4, verdicts  # passes, biased, noisy, NaN
+
+
+# Slips of exercise 10 (as tests/test_web_exercise.py's) and whether the IBL render passes:
+# the sampler's exponent (its draws follow another lobe, weighed by their own pdf: unbiased,
+# only the chi-square sees it), the pdf's Jacobian and a pdf 1.2 times too large (biased).
+IBL_SLIPS = [
+    (None, True),
+    (("1.0 / (ke + 1.0)", "1.0 / (ke + 2.0)"), True),
+    (("pdf_half_vector(H, N) / (4.0 * VoH)", "pdf_half_vector(H, N)"), False),
+    (("(ke + 1.0) * 0.5 * INV_PI", "(ke + 1.0) * 0.6 * INV_PI"), False),
+]
+
+
+def ibl_shape(message: str) -> str:
+    """The words of a render check's message: its numbers and the group it names (the
+    page's passes are other random draws than the grader's: iblcheck.js says why) blanked."""
+    message = re.sub(r"(ring θ #–#°|whole sphere)", "GROUP", NUMBER.sub("#", message))
+    return message.replace("+#", "#").replace("-#", "#")
+
+
+@pytest.mark.parametrize("slip,passes", IBL_SLIPS, ids=["solution", "exponent", "jacobian", "pdf"])
+def test_ibl_render_practice_gives_the_graders_verdict(page, tmp_path, slip, passes):
+    text = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text(encoding="utf-8")
+    if slip:
+        assert slip[0] in text
+        text = text.replace(*slip)
+    path = tmp_path / SAMPLER_FILE
+    path.write_text(text, encoding="utf-8")
+    graded = grade(SAMPLER, path, tmp_path)
+    practice(page, SAMPLER, text)
+    shown = dict(
+        (name, (passed, message))
+        for name, passed, message in page.evaluate(
+            "brdfLab.exercises.runSampling()"
+            ".then(rs => rs.map(r => [r.check.name, r.passed, r.message]))"
+        )
+    )
+    passed, message = shown[IBL]
+    assert passed == graded[IBL][0], (message, graded[IBL][1])
+    theirs = unlocated(graded[IBL][1]).rstrip(".")  # (a trace alone leaves its '.')
+    assert ibl_shape(message.rstrip(".")) == ibl_shape(theirs), (message, graded[IBL][1])
+    assert passed == passes
+    assert page.errors == []

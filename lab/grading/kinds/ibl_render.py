@@ -11,17 +11,20 @@ check's `ranges` keep hidden mode's exponent where that separates samplers)."""
 
 from __future__ import annotations
 
+import base64
 import math
+from statistics import NormalDist
 
 import numpy as np
 
-from lab.grading import sampling
+from lab.grading import mistakes, sampling
 from lab.grading.compare import png, tonemap
 from lab.grading.kinds.sampled import SampledKind
+from lab.grading.kinds.values import floats_b64
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
 from lab.ibl.environments import PROCEDURAL
-from lab.ibl.integrator import Progressive
+from lab.ibl.integrator import Progressive, local_view
 
 
 def estimate_fingerprint(renderer, model, params, env: str, rotation: float, seed: int):
@@ -142,10 +145,49 @@ class IBLRenderKind(SampledKind):
         verdict = passed if ok else failed
         return verdict(check, message, images=images, extra=stats)
 
-    def practice(self, exercise, check: Check, values) -> None:
-        """Graded only by the grader: its z-test and noise ratio need many passes of the
-        student's and the solution's estimators, more than a page's practice run."""
-        return None
+    def practice(self, exercise, check: Check, values) -> dict:
+        """What the page's iblcheck.js needs to judge a render as judge_render does, all made
+        here by the grader's code: the reference (the solution's pass, mean and variance),
+        each pixel's group of the z-test (an index into `groups`, 255 off the sphere) and
+        ring of the diagnosis' ring means, the normal quantile of the groups' Bonferroni
+        limit, and each stored mistake's converged ring means (nearest, without its render)."""
+        size, o = check.size, check.options
+        theta, _, mask = local_view(size)
+        zone = np.minimum((theta / 90.0 * sampling.Z_GROUPS).astype(int), sampling.Z_GROUPS - 1)
+        zones = np.full((size, size), 255, np.uint8)
+        groups = []
+        for r in range(sampling.Z_GROUPS):
+            if (mask & (zone == r)).any():
+                zones[mask & (zone == r)] = len(groups)
+                low, high = 90 * r / sampling.Z_GROUPS, 90 * (r + 1) / sampling.Z_GROUPS
+                groups.append(f"ring θ {low:.0f}–{high:.0f}°")  # as sampling.bias_z names it
+        groups.append("whole sphere")
+        ring = np.minimum((theta / 90.0 * sampling.RINGS).astype(int), sampling.RINGS - 1)
+        rings = np.where(mask, ring, 255).astype(np.uint8)
+        hints = mistakes.read_hints(exercise)
+        try:
+            with np.load(exercise.references / mistakes.VALUES) as data:
+                prefix = f"{check.name}|"
+                stored = {k[len(prefix) :]: data[k] for k in data.files if k.startswith(prefix)}
+        except (OSError, ValueError):
+            stored = {}
+        return {
+            "passes": self.passes(check),
+            "reference": floats_b64(values[check.name]),
+            "zones": base64.b64encode(zones.tobytes()).decode(),
+            "rings": base64.b64encode(rings.tobytes()).decode(),
+            "groups": groups,
+            "z_normal": NormalDist().inv_cdf(1.0 - o["alpha"] / (2.0 * len(groups))),
+            "same_render": sampling.SAME_RENDER,
+            "ring_count": sampling.RINGS,
+            "ring_means": {
+                key: sampling.ring_means(value[1]).tolist()
+                for key, value in stored.items()
+                if key in hints and value.shape == values[check.name].shape
+            },
+            # The page keeps the ring means above, not the stored renders themselves.
+            "diagnosis": {"candidates": {}, "terms": {}},
+        }
 
     def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
         if values.shape != reference.shape:

@@ -14,6 +14,7 @@ import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties } from "./properties.js";
+import { runIblRender } from "./iblcheck.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -21,6 +22,8 @@ const fromBase64 = (text, Type) => {
 };
 
 const PENDING = "not run for this version: press “run the sampling checks” (they take seconds)";
+// Checks that run on request (seconds, not every keystroke): sampling.js's and iblcheck.js's.
+const ON_REQUEST = [...SAMPLED_KINDS, "ibl_render"];
 
 // -- comparisons (lab/grading/checks.py) -----------------------------------------------------
 const tonemap = (x) => {
@@ -308,7 +311,7 @@ export class ExerciseMode {
         return { check, passed: false, message: `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}` };
       }
       // The sampling checks run on request (seconds, not every keystroke).
-      if (SAMPLED_KINDS.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
+      if (ON_REQUEST.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
       try {
         const result = runCheck(this.panel, check);
         if (result.compared && !result.passed) {
@@ -342,6 +345,13 @@ export class ExerciseMode {
       const saved = panel.values;
       panel.values = checkValues(panel.model, result.check.params);
       try {
+        if (result.check.kind === "ibl_render") {
+          const out = await runIblRender(panel, result.check, this.exercise);
+          const { x, y } = out.loop ?? {};
+          Object.assign(result, out.loop ? loopFailure(result.check, panel, `pixel (${x}, ${y}) of the render (row 0 at ` +
+            "the bottom)") : out, { pending: false });
+          continue;
+        }
         Object.assign(result, await runSampled(panel, result.check, this.exercise), { pending: false });
         if (panel.lastLoop) {
           Object.assign(result, { passed: false, message: `${this.exercise.student_file}:${panel.lastLoop.line}: ` +
