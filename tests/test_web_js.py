@@ -47,6 +47,8 @@ MIRRORS = {
     "measured.js": "test_web_files.py",
     "sampling.js": "test_web_exercise.py",
     "submission.js": "test_web_exercise.py",
+    "properties.js": "test_web_practice.py",
+    "iblcheck.js": "test_web_practice.py",
 }
 
 

@@ -137,7 +137,8 @@ def test_ibl_statistics_equal_the_graders_on_the_same_arrays(page):
           const luma = brdfLab.state.constants.LUMA;
           const out = {};
           for (const [key, text] of Object.entries(arrays)) {
-            const raw = new Float32Array(Uint8Array.from(atob(text), (c) => c.charCodeAt(0)).buffer);
+            const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+            const raw = new Float32Array(bytes.buffer);
             const verdict = m.judgeRender(check, raw, luma);
             out[key] = [verdict.passed, verdict.message, verdict.stats,
               m.nearestRender(check, exercise, raw, luma)];
@@ -145,7 +146,10 @@ def test_ibl_statistics_equal_the_graders_on_the_same_arrays(page):
           out.limits = [1, 2.5, 7, 31, 400].map((dof) => m.tLimit(check.z_normal, dof));
           return out;
         }""",
-        [IBL, {k: base64.b64encode(v.astype("<f4").tobytes()).decode() for k, v in renders.items()}],
+        [
+            IBL,
+            {k: base64.b64encode(v.astype("<f4").tobytes()).decode() for k, v in renders.items()},
+        ],
     )
     passes, o = kind.passes(check), check.options
     groups = sampling.Z_GROUPS + 1
@@ -209,3 +213,34 @@ def test_ibl_render_practice_gives_the_graders_verdict(page, tmp_path, slip, pas
     assert ibl_shape(message.rstrip(".")) == ibl_shape(theirs), (message, graded[IBL][1])
     assert passed == passes
     assert page.errors == []
+
+
+def test_practice_results_are_accessible(page, output_dir):
+    """axe finds no violation in the results of both kinds; a failed properties check's
+    table is a labelled region the keyboard can scroll; the render pictures are named."""
+    from axe import violations
+
+    wrong = (ROOT / "tests/exercise_11/wrong/no_sine.glsl").read_text(encoding="utf-8")
+    practice(page, PROPERTIES, wrong)
+    region = page.locator('#exercise .exercise-table[data-check="lambert"] [role=region]')
+    assert region.get_attribute("tabindex") == "0" and "grader's" in region.get_attribute(
+        "aria-label"
+    )
+    cells = region.locator("tbody tr").first.locator("td").all_inner_texts()
+    assert cells[0].startswith("directional_albedo") and cells[3] == "✗ differs", cells
+    assert violations(page) == []
+    page.locator("#exercise").screenshot(path=output_dir / "web_practice_properties.png")
+    practice(page, SAMPLER, (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text("utf-8"))
+    page.locator("#exercise button.run-sampling").click()
+    page.wait_for_function(
+        "document.querySelectorAll('#exercise li.pending').length === 0", timeout=120_000
+    )
+    pictures = page.locator(f'#exercise .exercise-images[data-check="{IBL}"] canvas')
+    assert pictures.count() == 4
+    assert all(
+        pictures.nth(i).get_attribute("role") == "img"
+        and pictures.nth(i).get_attribute("aria-label")
+        for i in range(4)
+    )
+    assert violations(page) == []
+    page.locator("#exercise").screenshot(path=output_dir / "web_practice_ibl_render.png")

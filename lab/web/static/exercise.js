@@ -13,7 +13,7 @@ import { addPanel, removePanel } from "./panels.js";
 import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
-import { diagnoseProperties, runProperties } from "./properties.js";
+import { diagnoseProperties, runProperties, valuesTable } from "./properties.js";
 import { runIblRender } from "./iblcheck.js";
 
 const fromBase64 = (text, Type) => {
@@ -406,10 +406,21 @@ export class ExerciseMode {
       })];
       if (!figures.length) continue;
       pictures.push(el("div", { class: "exercise-images", "data-check": r.check.name }, ...figures.map((f) => {
-        const c = el("canvas", { width: f.width, height: f.height, title: f.title });
+        const c = el("canvas", { width: f.width, height: f.height, title: f.title, role: "img", "aria-label": f.title });
         c.getContext("2d").putImageData(new ImageData(f.rgba, f.width, f.height), 0, 0);
         return el("figure", {}, c, el("figcaption", {}, `${r.check.name}: ${f.title}`));
       })));
+    }
+    // A failed properties check's values beside the grader's, as its report's table (a
+    // region of its own that scrolls, by keyboard too, on a narrow screen).
+    for (const r of this.results) {
+      if (r.check.kind !== "properties" || r.passed || !r.got) continue;
+      const table = valuesTable(r);
+      pictures.push(el("figure", { class: "exercise-table", "data-check": r.check.name },
+        el("div", { class: "scroll", tabindex: "0", role: "region", "aria-label": `${r.check.name}: your values and the grader's` },
+          el("table", {}, el("thead", {}, el("tr", {}, ...table.head.map((h) => el("th", { scope: "col" }, h)))),
+            el("tbody", {}, ...table.rows.map((cells) => el("tr", {}, ...cells.map((c) => el("td", {}, c))))))),
+        el("figcaption", {}, `${r.check.name}: ${table.caption}`)));
     }
     // The checks only the grader runs, named with their points and why.
     const others = exercise.grader_only || [];

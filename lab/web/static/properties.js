@@ -227,3 +227,25 @@ export function runProperties(panel, check) {
   const truth = check.truth;
   return { ...compareProperties(check, got, truth), got, truth }; // diagnosed by diagnoseProperties
 }
+
+const SHOWN_PAIRS = 8; // PropertiesKind.SHOWN_PAIRS: reciprocity rows shown, failing first
+
+/** The grader's report table of a check (figures()): the albedo rows and a few reciprocity
+ * pairs, yours beside the grader's, each marked in words (not colour alone). */
+export function valuesTable({ check, got, truth, off }) {
+  const n = check.options.albedo_rows;
+  let pairs = off.map((bad, k) => (bad && k >= n ? k : -1)).filter((k) => k >= 0).slice(0, SHOWN_PAIRS);
+  if (!pairs.length && truth.length > n) {
+    const rest = truth.slice(n);
+    pairs = [n + rest.indexOf(Math.max(...rest))];
+  }
+  const rows = [...Array(n).keys(), ...pairs].map((k) => {
+    const row = check.rows[k];
+    const what = k < n ? `directional_albedo, θV = ${row[2].toFixed(1)}°`
+      : `reciprocity_error, (θL, φL, θV, φV) = (${deg0(row)})`;
+    return [what, g4(got[k]), g4(truth[k]), off[k] ? "✗ differs" : "✓"];
+  });
+  const hidden = off.filter((bad, k) => bad && k >= n).length - pairs.filter((k) => off[k]).length;
+  return { head: ["row", "yours", "grader's", "within tolerance"], rows,
+    caption: `your tests' values beside the grader's measurement of the same model${hidden > 0 ? ` (${hidden} more pairs differ)` : ""}` };
+}
