@@ -242,5 +242,7 @@ def test_practice_results_are_accessible(page, output_dir):
         and pictures.nth(i).get_attribute("aria-label")
         for i in range(4)
     )
+    note = page.locator(f'#exercise .practice-note[data-check="{IBL}"]').inner_text()
+    assert "other random numbers" in note and "brdf-lab grade decides" in note
     assert violations(page) == []
     page.locator("#exercise").screenshot(path=output_dir / "web_practice_ibl_render.png")

@@ -4,9 +4,10 @@ Everything the grader decides from is computed here by the grader's own code, so
 cannot drift from it: each check's kind (lab.grading.kinds) gives its inputs (the direction
 pairs of probe and polar checks) and committed reference values or images; tolerances,
 points and the stub come from exercise.toml. The page renders the student's file in WebGL
-and compares as the probe, polar and sphere kinds do, and runs a sampler's chi-square,
-pdf integral and IBL render checks (static/sampling.js); a kind it cannot run is listed
-as the grader's alone.
+and compares as the probe, polar and sphere kinds do, runs a sampler's chi-square and pdf
+integral checks (static/sampling.js) and IBL render checks (static/iblcheck.js), and links
+exercise 11's tests with their models (static/properties.js); a kind it cannot run (its
+`practice` gives None) is listed as the grader's alone.
 """
 
 from __future__ import annotations

@@ -106,6 +106,12 @@ class IBLRenderKind(SampledKind):
             )
 
     @staticmethod
+    def rotation(check: Check) -> float:
+        """The environment's turn about the vertical in degrees, as render() draws it (here
+        none; render() and this change together), which the page's render follows."""
+        return 0.0
+
+    @staticmethod
     def passes(check: Check) -> int:
         return check.options["converged"] // check.options["samples"]
 
@@ -173,6 +179,7 @@ class IBLRenderKind(SampledKind):
             stored = {}
         return {
             "passes": self.passes(check),
+            "rotation": self.rotation(check),
             "reference": floats_b64(values[check.name]),
             "zones": base64.b64encode(zones.tobytes()).decode(),
             "rings": base64.b64encode(rings.tobytes()).decode(),

@@ -410,6 +410,7 @@ export class ExerciseMode {
         c.getContext("2d").putImageData(new ImageData(f.rgba, f.width, f.height), 0, 0);
         return el("figure", {}, c, el("figcaption", {}, `${r.check.name}: ${f.title}`));
       })));
+      if (r.note) pictures.push(el("p", { class: "practice-note", "data-check": r.check.name }, r.note));
     }
     // A failed properties check's values beside the grader's, as its report's table (a
     // region of its own that scrolls, by keyboard too, on a narrow screen).

@@ -193,7 +193,7 @@ export async function renderPasses(panel, check) {
     for (let p = 0; p < check.passes; p++) {
       const out = topFirst(panel.run("ibl", size, size, {
         u_env: 0, u_density: 1, u_marginal: 2, u_conditional: 3, u_env_size: env.size, u_resolution: [size, size],
-        u_rotation: 0, u_strategy: brdf, u_spp: samples, u_frame: p, u_sample0: p * samples, u_seed: seed,
+        u_rotation: (check.rotation * Math.PI) / 180, u_strategy: brdf, u_spp: samples, u_frame: p, u_sample0: p * samples, u_seed: seed,
       }, { preamble: `#define LAB_STRATEGY ${brdf}`, transform, textures: env.list, tag: "ibl_check" }), size, size);
       if (panel.lastLoop) return { loop: panel.lastLoop };
       for (let i = 0; i < pixels; i++) {
@@ -243,6 +243,10 @@ export async function runIblRender(panel, check, exercise) {
   const { reference } = prepared(check);
   const size = check.size;
   const image = (stack, k) => stack.subarray(3 * k * size * size, 3 * (k + 1) * size * size);
+  // What the page does not do as the grader does, said plainly beside the pictures.
+  result.note = "The page draws other random numbers than brdf-lab grade (the grader salts the seed with its " +
+    "preprocessed text of your file): the figures differ from the grader's by noise, and a verdict at the " +
+    "limit may differ; brdf-lab grade decides.";
   result.renders = [[CAPTIONS.reference, reference, 1], [CAPTIONS.solution, reference, 0], [CAPTIONS.yours, raw, 0],
     [CAPTIONS.converged, raw, 1]].map(([title, stack, k]) => ({ title, size, rgb: image(stack, k) }));
   return result;

@@ -4,9 +4,7 @@
 // same view template (shaders/views/ibl_sample.glsl) with the same random numbers (the
 // PCG of terms/sampling.glsl, seeded by texel and seed), in the same turned frames
 // (exercises.json carries them from the grader's code); the pdf is integrated per bin by
-// the same adaptive quadrature over ibl_pdf.glsl. The IBL render check is the grader's
-// alone (its z-test and noise ratio take many passes of two estimators): the page lists it
-// among the checks only the grader runs.
+// the same adaptive quadrature over ibl_pdf.glsl. The IBL render check is iblcheck.js's.
 // The bins, thresholds and sentences are the grader's (lab/ibl/chisquare.py,
 // lab/grading/sampling.py, lab/grading/words.py SAMPLING), sent with each check as data
 // (check.rules: lab/grading/kinds/sampled.py page_rules); this file carries the mechanisms.
