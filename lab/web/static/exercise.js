@@ -14,7 +14,6 @@ import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesTable } from "./properties.js";
-import { runIblRender } from "./iblcheck.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -346,6 +345,8 @@ export class ExerciseMode {
       panel.values = checkValues(panel.model, result.check.params);
       try {
         if (result.check.kind === "ibl_render") {
+          // Loaded when first asked for (it brings the IBL sources), not with the page.
+          const { runIblRender } = await import("./iblcheck.js");
           const out = await runIblRender(panel, result.check, this.exercise);
           const { x, y } = out.loop ?? {};
           Object.assign(result, out.loop ? loopFailure(result.check, panel, `pixel (${x}, ${y}) of the render (row 0 at ` +
