@@ -13,7 +13,7 @@ import { addPanel, removePanel } from "./panels.js";
 import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
-import { diagnoseProperties, runProperties, valuesTable } from "./properties.js";
+import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -413,16 +413,9 @@ export class ExerciseMode {
       })));
       if (r.note) pictures.push(el("p", { class: "practice-note", "data-check": r.check.name }, r.note));
     }
-    // A failed properties check's values beside the grader's, as its report's table (a
-    // region of its own that scrolls, by keyboard too, on a narrow screen).
+    // A failed properties check's values beside the grader's, as its report's table.
     for (const r of this.results) {
-      if (r.check.kind !== "properties" || r.passed || !r.got) continue;
-      const table = valuesTable(r);
-      pictures.push(el("figure", { class: "exercise-table", "data-check": r.check.name },
-        el("div", { class: "scroll", tabindex: "0", role: "region", "aria-label": `${r.check.name}: your values and the grader's` },
-          el("table", {}, el("thead", {}, el("tr", {}, ...table.head.map((h) => el("th", { scope: "col" }, h)))),
-            el("tbody", {}, ...table.rows.map((cells) => el("tr", {}, ...cells.map((c) => el("td", {}, c))))))),
-        el("figcaption", {}, `${r.check.name}: ${table.caption}`)));
+      if (r.check.kind === "properties" && !r.passed && r.got) pictures.push(valuesFigure(r));
     }
     // The checks only the grader runs, named with their points and why.
     const others = exercise.grader_only || [];

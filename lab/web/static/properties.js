@@ -11,6 +11,7 @@
 import { floatTexture } from "./assemble.js";
 import { defaults, formatDigits, parseModel } from "./header.js";
 import { sentence } from "./diagnosis.js";
+import { el } from "./dom.js";
 
 const VIEW = "grade_properties";
 const RAD = Math.PI / 180;
@@ -232,7 +233,7 @@ const SHOWN_PAIRS = 8; // PropertiesKind.SHOWN_PAIRS: reciprocity rows shown, fa
 
 /** The grader's report table of a check (figures()): the albedo rows and a few reciprocity
  * pairs, yours beside the grader's, each marked in words (not colour alone). */
-export function valuesTable({ check, got, truth, off }) {
+function valuesTable({ check, got, truth, off }) {
   const n = check.options.albedo_rows;
   let pairs = off.map((bad, k) => (bad && k >= n ? k : -1)).filter((k) => k >= 0).slice(0, SHOWN_PAIRS);
   if (!pairs.length && truth.length > n) {
@@ -248,4 +249,17 @@ export function valuesTable({ check, got, truth, off }) {
   const hidden = off.filter((bad, k) => bad && k >= n).length - pairs.filter((k) => off[k]).length;
   return { head: ["row", "yours", "grader's", "within tolerance"], rows,
     caption: `your tests' values beside the grader's measurement of the same model${hidden > 0 ? ` (${hidden} more pairs differ)` : ""}` };
+}
+
+/** The table of a checked result as a figure: a labelled region of its own that scrolls (by
+ * keyboard too) on a narrow screen. */
+export function valuesFigure(result) {
+  const table = valuesTable(result);
+  const name = result.check.name;
+  const cells = (tag, texts, extra = {}) => texts.map((t) => el(tag, extra, t));
+  return el("figure", { class: "exercise-table", "data-check": name },
+    el("div", { class: "scroll", tabindex: "0", role: "region", "aria-label": `${name}: your values and the grader's` },
+      el("table", {}, el("thead", {}, el("tr", {}, ...cells("th", table.head, { scope: "col" }))),
+        el("tbody", {}, ...table.rows.map((row) => el("tr", {}, ...cells("td", row)))))),
+    el("figcaption", {}, `${name}: ${table.caption}`));
 }
