@@ -246,3 +246,35 @@ def test_practice_results_are_accessible(page, output_dir):
     assert "other random numbers" in note and "brdf-lab grade decides" in note
     assert violations(page) == []
     page.locator("#exercise").screenshot(path=output_dir / "web_practice_ibl_render.png")
+
+
+@pytest.mark.parametrize(
+    "slip",
+    [
+        # a syntax error: every check names the file and line, as the grader
+        (
+            "return max(total.r, max(total.g, total.b));",
+            "return max(total.r, max(total.g, total.b))",
+        ),
+        # the stand-in's include left out: the panel cannot compile the file alone, every
+        # check links it (as the grader) and passes
+        ("// @include terms/brdf_stand_in.glsl\n", ""),
+    ],
+    ids=["syntax", "no_include"],
+)
+def test_properties_compile_as_the_grader_links(page, tmp_path, slip):
+    text = (ROOT / "solutions" / PROPERTIES / "properties.glsl").read_text(encoding="utf-8")
+    assert slip[0] in text
+    text = text.replace(*slip)
+    path = tmp_path / "properties.glsl"
+    path.write_text(text, encoding="utf-8")
+    graded = grade(PROPERTIES, path, tmp_path)
+    shown = practice(page, PROPERTIES, text)
+    for name, (passed, message) in graded.items():
+        assert shown[name][0] == passed, (name, shown[name][1], message)
+        if not passed:
+            where = re.search(r"properties\.glsl:(\d+):", message).group(0)
+            assert f"the shader does not compile: {where}" in shown[name][1], shown[name][1]
+        else:
+            assert same_words(shown[name][1], message)
+    assert page.errors == []

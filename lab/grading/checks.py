@@ -171,8 +171,11 @@ def prepare(exercise: Exercise, submission: Path, root: Path | None = None) -> S
         model = build_model(exercise, submission, code)
     except SubmissionError as err:
         return Submission(error=str(err))
+    alone = model
+    for kind in dict.fromkeys(kind_of(check) for check in exercise.checks):
+        alone = kind.portable(exercise, alone)  # as the page compiles the file on its own
     executor = ThreadPoolExecutor(max_workers=1)
-    portable = executor.submit(portability_warnings, model, label_of(submission))
+    portable = executor.submit(portability_warnings, alone, label_of(submission))
     executor.shutdown(wait=False)
     notes = header_notes(exercise, submission, code)
     return Submission(code, model, portable=portable, notes=notes)

@@ -153,6 +153,12 @@ class CheckKind:
         student's code on another model (exercise 11's tests of a target BRDF)."""
         return model
 
+    def portable(self, exercise, model: Model) -> Model:
+        """The program the web page compiles the student's file as on its own (what the
+        GLSL ES portability check compiles): the submission itself, unless the kind links
+        the file with models of its own."""
+        return model
+
     def angles(self, check: Check) -> np.ndarray | None:
         """(n, 4) rows theta_i, phi_i, theta_o, phi_o in degrees, or None (not pairs)."""
         return None

@@ -31,7 +31,7 @@ from lab.grading.kinds import CheckKind
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
 from lab.ibl.chisquare import random_frame
-from lab.models import Model, load_model, model_names
+from lab.models import Model, load_model, model_names, parse_model
 
 VIEW = "grade_properties"
 PROTOTYPE = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y); "  # before the student's code
@@ -136,6 +136,13 @@ class PropertiesKind(CheckKind):
             )
         if not 0 <= check.pairs <= 1024:
             raise ExerciseError(f"{here}: pairs (reciprocity pairs) must be 0 to 1024")
+
+    def portable(self, exercise, model: Model) -> Model:
+        """Alone, the file compiles with the stub's includes (the BRDF stand-in), whatever it
+        includes itself: the grader links its own model instead (linked), and the page's
+        panel compiles it so (static/submission.js)."""
+        stub = parse_model(exercise.stub.read_text(encoding="utf-8"), exercise.stub)
+        return replace(model, includes=list(stub.includes))
 
     def params_model(self, check: Check, model: Model) -> Model:
         """Hidden mode draws the target's parameters (its header, the check's ranges)."""

@@ -206,10 +206,10 @@ function checkValues(model, params) {
 }
 
 /** Runs one check on the panel (its model is the submission); {passed, message, ...}. */
-export function runCheck(panel, check) {
+export function runCheck(panel, check, submission = panel.model) {
   if (check.kind === "properties") {
     // The student's tests linked with the check's model, judged and diagnosed (properties.js).
-    const result = runProperties(panel, check);
+    const result = runProperties(panel, check, submission);
     return result.loop ? loopFailure(check, panel, result.loop) : result;
   }
   const saved = panel.values;
@@ -294,7 +294,13 @@ export class ExerciseMode {
     await this.openEditor(this.panel, exercise.stub, {
       path,
       text: exercise.stub,
-      build: (text) => buildSubmission(exercise, text, path, lab.models),
+      // The last text's model even when the panel's compile of it fails: checks that link it
+      // with models of their own compile it their way (properties.js).
+      build: (text) => {
+        this.built = null;
+        this.built = buildSubmission(exercise, text, path, lab.models);
+        return this.built;
+      },
       onResult: (errors) => this.run(errors),
     });
   }
@@ -304,15 +310,18 @@ export class ExerciseMode {
     const exercise = this.exercise;
     if (!exercise || !this.panel?.model) return [];
     this.errors = errors;
+    // A file the panel cannot compile alone may still link (the grader links it with each
+    // check's model, never compiles it alone): those checks compile it their way.
+    const built = this.built ?? this.panel.model;
     this.results = exercise.checks.map((check) => {
-      if (errors.length) {
+      if (errors.length && !(check.linked_with && built)) {
         const first = errors[0];
         return { check, passed: false, message: `the shader does not compile: ${exercise.student_file}:${first.line}: ${first.message}` };
       }
       // The sampling checks run on request (seconds, not every keystroke).
       if (ON_REQUEST.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
       try {
-        const result = runCheck(this.panel, check);
+        const result = runCheck(this.panel, check, built);
         if (result.compared && !result.passed) {
           // As the grader: the likely mistake ends the message (a diagnosis never breaks a check).
           try {
@@ -329,7 +338,7 @@ export class ExerciseMode {
         return { check, passed: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` };
       }
     });
-    if (!errors.length) diagnoseProperties(exercise, this.results); // across its checks
+    diagnoseProperties(exercise, this.results); // across its checks
     this.runs++;
     this.show();
     return this.results;

@@ -195,10 +195,10 @@ function rowWords(check, k) {
   return `reciprocity_error at (θL, φL, θV, φV) = (${row.map((a) => `${a.toFixed(1)}°`).join(", ")})`;
 }
 
-/** Runs the check on `panel` with the student's `text` linked to its model: {passed,
+/** Runs the check on `panel` with the student's `submission` linked to its model: {passed,
  * message, got, truth, off}, or {loop: where} when the loop guard stopped a loop. */
-export function runProperties(panel, check) {
-  const linked = linkedModel(check, panel.model, panel.lab.models);
+export function runProperties(panel, check, submission = panel.model) {
+  const linked = linkedModel(check, submission, panel.lab.models);
   const rows = check.rows;
   const width = Math.min(rows.length, 1024);
   const height = Math.ceil(rows.length / width);
