@@ -228,6 +228,9 @@ def test_practice_results_are_accessible(page, output_dir):
     )
     cells = region.locator("tbody tr").first.locator("td").all_inner_texts()
     assert cells[0].startswith("directional_albedo") and cells[3] == "✗ differs", cells
+    # What the grader checks besides and the page does not (scope.py) is said in words.
+    note = page.locator("#exercise > p.practice-note").inner_text()
+    assert note.startswith("Not checked here") and "PI, INV_PI, EPS, BRDF" in note, note
     assert violations(page) == []
     page.locator("#exercise").screenshot(path=output_dir / "web_practice_properties.png")
     practice(page, SAMPLER, (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text("utf-8"))

@@ -130,6 +130,9 @@ def exercise_entry(exercise: Exercise) -> dict:
         if exercise.estimator
         else None,
         "loop_limit": exercise.loop_limit,  # the loop guard's limit for the student's loops
+        # The library names the handout gives: the grader refuses others (scope.py), which
+        # the page does not check and therefore names (static/exercise.js).
+        "api": list(exercise.api),
         "checks": checks,
         "max_points": sum(entry["points"] for entry in checks),
         "grader_only": only_graded,

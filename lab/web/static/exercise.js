@@ -452,7 +452,11 @@ export class ExerciseMode {
       el("header", {}, el("strong", {}, exercise.title),
         el("span", { class: "practice" }, `practice check in the browser, not a grade (brdf-lab grade decides): ${tally}` +
           (others.length ? ` here; ${formatG(otherPoints)} more points in checks only the grader runs` : ""))),
-      el("ul", { class: "checks" }, ...rows), ...sampling, ...pictures,
+      el("ul", { class: "checks" }, ...rows),
+      // What the grader checks besides, which the page does not: said, not implied.
+      el("p", { class: "practice-note" }, "Not checked here: brdf-lab grade also refuses a file that names the " +
+        `lab's library beyond what the handout gives (${(exercise.api || []).join(", ") || "nothing"}).`),
+      ...sampling, ...pictures,
       ...(others.length ? [el("p", { class: "grader-only" }, "Only brdf-lab grade runs these checks: ",
         el("code", {}, `brdf-lab grade exercises/${exercise.name} --submission ${exercise.student_file}`)),
       el("ul", { class: "checks" }, ...graded)] : []));
