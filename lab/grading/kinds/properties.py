@@ -383,9 +383,10 @@ class PropertiesKind(CheckKind):
         target = check.options["target"]
         if target.endswith(".glsl"):
             path = Path(target)
+            inside = path.relative_to(exercise.folder.resolve()).as_posix()
             linked_with = {
                 "name": path.stem,
-                "path": f"exercises/{exercise.name}/{path.relative_to(exercise.folder).as_posix()}",
+                "path": f"exercises/{exercise.name}/{inside}",
                 "source": path.read_text(encoding="utf-8"),
             }
         else:
