@@ -281,3 +281,27 @@ def test_properties_compile_as_the_grader_links(page, tmp_path, slip):
         else:
             assert same_words(shown[name][1], message)
     assert page.errors == []
+
+
+def test_ibl_render_names_a_stopped_loop_as_the_grader(page, tmp_path):
+    """A sampler whose loop never ends: the loop guard stops it, and the check says where,
+    in the grader's words (the first pixel of the render it stopped at)."""
+    text = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text(encoding="utf-8")
+    first = "    vec3 H = sample_half_vector(u, N, X, Y);"
+    assert first in text
+    text = text.replace(
+        first, "    float k = 0.0;\n    while (k >= 0.0) { k += 1.0; }\n" + first, 1
+    )
+    path = tmp_path / SAMPLER_FILE
+    path.write_text(text, encoding="utf-8")
+    graded = grade(SAMPLER, path, tmp_path)
+    practice(page, SAMPLER, text)
+    # Only this check (the others' 100,000 samples would each run the loop out too).
+    page.evaluate(f"brdfLab.exercises.results.forEach(r => r.pending &&= r.check.name === '{IBL}')")
+    shown = page.evaluate(
+        "brdfLab.exercises.runSampling().then(rs => rs.find(r => r.check.name === "
+        f"'{IBL}')).then(r => [r.passed, r.message])"
+    )
+    assert not graded[IBL][0] and "did not end within" in graded[IBL][1]
+    assert shown == [False, graded[IBL][1].replace(str(path), SAMPLER_FILE)]
+    assert page.errors == []
