@@ -132,6 +132,7 @@ def test_ibl_statistics_equal_the_graders_on_the_same_arrays(page):
         """async ([name, arrays]) => {
           const m = await import('./iblcheck.js');
           const data = await (await fetch('exercises.json')).json();
+          (await import('./diagnosis.js')).useRules(data.diagnosis);  // its sentences
           const exercise = data.exercises.find((e) => e.name === '10_importance_sampling');
           const check = exercise.checks.find((c) => c.name === name);
           const luma = brdfLab.state.constants.LUMA;

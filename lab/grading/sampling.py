@@ -351,9 +351,12 @@ def bias_z(raw: np.ndarray, reference: np.ndarray, passes: int) -> tuple[np.ndar
     v = (raw[2][..., 0].astype(np.float64) + reference[2][..., 0]) / passes
     ring = np.minimum((theta / 90.0 * Z_GROUPS).astype(int), Z_GROUPS - 1)
     groups = [
-        (mask & (ring == r), f"ring θ {90 * r / Z_GROUPS:.0f}–{90 * (r + 1) / Z_GROUPS:.0f}°")
+        (
+            mask & (ring == r),
+            WORDS["ring"].format(low=90 * r / Z_GROUPS, high=90 * (r + 1) / Z_GROUPS),
+        )
         for r in range(Z_GROUPS)
-    ] + [(mask, "whole sphere")]
+    ] + [(mask, WORDS["whole_sphere"])]
     groups = [(g, name) for g, name in groups if g.any()]
     ref = _luminance(reference[1])
     z = np.array([d[g].sum() / math.sqrt(max(v[g].sum(), 1e-30)) for g, _ in groups])
@@ -390,43 +393,26 @@ def judge_render(
     pixels = raw[:, _sphere(raw.shape[1])]
     bad = (~np.isfinite(pixels) | (pixels < 0)).any(axis=-1).any(axis=0)
     if bad.any():
-        return False, f"{int(bad.sum())} pixels of the sphere are NaN, infinite or negative", {}
+        return False, WORDS["render_bad"].format(count=int(bad.sum())), {}
     mine, theirs = render_errors(raw, reference, passes)
     z, words = bias_z(raw, reference, passes)
     limits = np.array([t_limit(alpha, len(z), dof) for _, _, dof in words])
     worst = int(np.argmax(np.abs(z) / limits))
     limit = float(limits[worst])
-    noise = (
-        f"at {samples} samples per pixel your render is {100 * mine:.1f}% RMS off the "
-        f"converged reference, the solution's {100 * theirs:.1f}% (allowed {factor:g}×)"
+    noise = WORDS["render_noise"].format(
+        samples=samples, mine=100 * mine, theirs=100 * theirs, factor=factor
     )
     name, rel, _ = words[worst]
     ratio = mine / max(theirs, 1e-12)
     stats = {"noise_ratio": ratio, "largest_z": float(abs(z[worst])), "z_limit": limit}
     if abs(z[worst]) > limit:
-        return (
-            False,
-            (
-                f"over {samples * passes} samples per pixel your estimator converges to another "
-                f"image: in the {name} its mean is {100 * rel:+.1f}% off the reference's (z = "
-                f"{z[worst]:.1f}, allowed |z| ≤ {limit:.1f} for noise like yours); {noise}: it is "
-                "biased — a sample's weight f_r L_i cos θ / p does not fit the density p its "
-                "direction is drawn with"
-            ),
-            stats,
-        )
+        said = {"total": samples * passes, "group": name, "rel": 100 * rel, "z": z[worst]}
+        text = WORDS["render_biased"].format(**said, limit=limit, noise=noise)
+        return False, text, stats
     if mine > factor * theirs:
-        return (
-            False,
-            (
-                f"{noise}: {ratio:.1f}× the solution's noise; it converges to the right image, "
-                "but needs far more samples to get there (samples drawn like the lobe, each "
-                "from its own random numbers, need fewer)"
-            ),
-            stats,
-        )
-    closest = f"closest |z| {abs(z[worst]):.1f} of {limit:.1f}"
-    return True, f"{noise}; no bias (every ring within its limit; {closest})", stats
+        return False, WORDS["render_noisy"].format(noise=noise, ratio=ratio), stats
+    text = WORDS["render_passes"].format(noise=noise, z=abs(z[worst]), limit=limit)
+    return True, text, stats
 
 
 RINGS = 16

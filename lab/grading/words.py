@@ -124,6 +124,28 @@ SAMPLING = {
         "samples fail, so the density of what your sampler draws integrates to "
         "{density:.4f} (allowed ±{allowed:.3f}): the pdf does not describe the sampler"
     ),
+    # The IBL render (sampling.judge_render; the page's iblcheck.js fills the same).
+    "ring": "ring θ {low:.0f}–{high:.0f}°",
+    "whole_sphere": "whole sphere",
+    "render_bad": "{count} pixels of the sphere are NaN, infinite or negative",
+    "render_noise": (
+        "at {samples} samples per pixel your render is {mine:.1f}% RMS off the converged "
+        "reference, the solution's {theirs:.1f}% (allowed {factor:g}×)"
+    ),
+    "render_biased": (
+        "over {total} samples per pixel your estimator converges to another image: in the "
+        "{group} its mean is {rel:+.1f}% off the reference's (z = {z:.1f}, allowed |z| ≤ "
+        "{limit:.1f} for noise like yours); {noise}: it is biased — a sample's weight "
+        "f_r L_i cos θ / p does not fit the density p its direction is drawn with"
+    ),
+    "render_noisy": (
+        "{noise}: {ratio:.1f}× the solution's noise; it converges to the right image, but "
+        "needs far more samples to get there (samples drawn like the lobe, each from its own "
+        "random numbers, need fewer)"
+    ),
+    "render_passes": (
+        "{noise}; no bias (every ring within its limit; closest |z| {z:.1f} of {limit:.1f})"
+    ),
 }
 
 

@@ -166,8 +166,8 @@ class IBLRenderKind(SampledKind):
             if (mask & (zone == r)).any():
                 zones[mask & (zone == r)] = len(groups)
                 low, high = 90 * r / sampling.Z_GROUPS, 90 * (r + 1) / sampling.Z_GROUPS
-                groups.append(f"ring θ {low:.0f}–{high:.0f}°")  # as sampling.bias_z names it
-        groups.append("whole sphere")
+                groups.append(sampling.WORDS["ring"].format(low=low, high=high))  # as bias_z
+        groups.append(sampling.WORDS["whole_sphere"])
         ring = np.minimum((theta / 90.0 * sampling.RINGS).astype(int), sampling.RINGS - 1)
         rings = np.where(mask, ring, 255).astype(np.uint8)
         hints = mistakes.read_hints(exercise)
@@ -184,6 +184,8 @@ class IBLRenderKind(SampledKind):
             "zones": base64.b64encode(zones.tobytes()).decode(),
             "rings": base64.b64encode(rings.tobytes()).decode(),
             "groups": groups,
+            "words": {k: v for k, v in sampling.WORDS.items() if k.startswith("render_")},
+            "captions": self.captions,  # the renders' titles, as the report's
             "z_normal": NormalDist().inv_cdf(1.0 - o["alpha"] / (2.0 * len(groups))),
             "same_render": sampling.SAME_RENDER,
             "ring_count": sampling.RINGS,

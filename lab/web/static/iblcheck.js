@@ -9,16 +9,16 @@
 // Why in JavaScript too: practice mode judges the student's text in the browser, which
 // never reaches Python. What can be data is data: exercises.json carries the reference,
 // each pixel's group and ring (from the grader's local_view), the group names, the normal
-// quantile of the Bonferroni limit and each stored mistake's ring means; the statistics
-// themselves are mirrored, and tests/test_web_practice.py holds them to sampling.py's on
-// the same arrays.
+// quantile of the Bonferroni limit, each stored mistake's ring means, the sentences
+// (lab/grading/words.py) and the captions; the statistics themselves are mirrored, and
+// tests/test_web_practice.py holds them to sampling.py's on the same arrays.
 // Where the page differs: the grader seeds its passes with the check's seed salted by the
 // SHA-1 of its preprocessed sampler text (sampling.program_seed), which the page does not
 // have; it salts the seed with a hash of the student's text instead. Its passes are then
 // other random draws of the same estimator: the figures differ from the grader's by noise,
 // and the verdict is the grader's but for chance (alpha) or a noise ratio at the limit.
 import { environmentTextures, insertBeforeView, loadEnvironment, STRATEGIES } from "./iblsource.js";
-import { formatG } from "./header.js";
+import { fill } from "./header.js";
 import { topFirst } from "./viewkit.js";
 import { sentence } from "./diagnosis.js";
 
@@ -73,7 +73,8 @@ export function judgeRender(check, raw, luma) {
     }
     bad += wrong;
   }
-  if (bad) return { passed: false, message: `${bad} pixels of the sphere are NaN, infinite or negative`, stats: {} };
+  const words = check.words; // lab/grading/words.py SAMPLING's render_* templates
+  if (bad) return { passed: false, message: fill(words.render_bad, { count: bad }), stats: {} };
   const mine = luminance(raw, 1, pixels, luma);
   const ref = luminance(reference, 1, pixels, luma);
   // render_errors: over the sphere.
@@ -115,21 +116,15 @@ export function judgeRender(check, raw, luma) {
   const rel = g.d / g.n / Math.max(Math.abs(g.ref / g.n), 1e-12);
   const ratio = errorMine / Math.max(errorTheirs, 1e-12);
   const stats = { noise_ratio: ratio, largest_z: Math.abs(z[worst]), z_limit: limit };
-  const noise = `at ${samples} samples per pixel your render is ${(100 * errorMine).toFixed(1)}% RMS off the ` +
-    `converged reference, the solution's ${(100 * errorTheirs).toFixed(1)}% (allowed ${formatG(factor)}×)`;
+  const noise = fill(words.render_noise, { samples, mine: 100 * errorMine, theirs: 100 * errorTheirs, factor });
   if (Math.abs(z[worst]) > limit) {
-    const signed = `${rel < 0 || Object.is(rel, -0) ? "" : "+"}${(100 * rel).toFixed(1)}`;
-    return { passed: false, stats, message: `over ${samples * passes} samples per pixel your estimator converges ` +
-      `to another image: in the ${check.groups[worst]} its mean is ${signed}% off the reference's (z = ` +
-      `${z[worst].toFixed(1)}, allowed |z| ≤ ${limit.toFixed(1)} for noise like yours); ${noise}: it is biased — ` +
-      "the pdf does not match what the sampler draws" };
+    const said = { total: samples * passes, group: check.groups[worst], rel: 100 * rel, z: z[worst], limit, noise };
+    return { passed: false, stats, message: fill(words.render_biased, said) };
   }
   if (errorMine > factor * errorTheirs) {
-    return { passed: false, stats, message: `${noise}: ${ratio.toFixed(1)}× the solution's noise; it converges to ` +
-      "the right image, but a sampler shaped like the lobe gets there with far fewer samples" };
+    return { passed: false, stats, message: fill(words.render_noisy, { noise, ratio }) };
   }
-  const closest = `closest |z| ${Math.abs(z[worst]).toFixed(1)} of ${limit.toFixed(1)}`;
-  return { passed: true, stats, message: `${noise}; no bias (every ring within its limit; ${closest})` };
+  return { passed: true, stats, message: fill(words.render_passes, { noise, z: Math.abs(z[worst]), limit }) };
 }
 
 /** Mean luminance per ring of equal view angle of the converged image (ring_means). */
@@ -221,14 +216,6 @@ export async function renderPasses(panel, check) {
   return { raw };
 }
 
-// The grader's report captions (IBLRenderKind.captions).
-const CAPTIONS = {
-  reference: "the solution's estimator, converged (the reference)",
-  solution: "the solution's sampler at the same samples",
-  yours: "your sampler at the same samples",
-  converged: "your estimator run longer: what it converges to",
-};
-
 /** Runs the check on the panel (its values already the check's): {passed, message,
  * renders} as the grader judges and pictures it, or {loop} (a loop the guard stopped). */
 export async function runIblRender(panel, check, exercise) {
@@ -247,7 +234,8 @@ export async function runIblRender(panel, check, exercise) {
   result.note = "The page draws other random numbers than brdf-lab grade (the grader salts the seed with its " +
     "preprocessed text of your file): the figures differ from the grader's by noise, and a verdict at the " +
     "limit may differ; brdf-lab grade decides.";
-  result.renders = [[CAPTIONS.reference, reference, 1], [CAPTIONS.solution, reference, 0], [CAPTIONS.yours, raw, 0],
-    [CAPTIONS.converged, raw, 1]].map(([title, stack, k]) => ({ title, size, rgb: image(stack, k) }));
+  const caption = check.captions; // the grader's report captions (IBLRenderKind.captions)
+  result.renders = [[caption["converged reference"], reference, 1], [caption.solution, reference, 0],
+    [caption.yours, raw, 0], [caption["yours, converged"], raw, 1]].map(([title, stack, k]) => ({ title, size, rgb: image(stack, k) }));
   return result;
 }
