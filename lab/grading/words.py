@@ -149,6 +149,46 @@ SAMPLING = {
 }
 
 
+# A `properties` check (exercise 11: kinds/properties.py; the page's properties.js).
+PROPERTIES = {
+    "gains": "gains energy",
+    "conserves": "conserves energy",
+    "not_reciprocal": "not reciprocal",
+    "reciprocal": "reciprocal",
+    "found": "the model {energy} and is {reciprocity}",
+    "largest": "largest albedo {albedo:.3f}",
+    "largest_error": "largest albedo {albedo:.3f}, largest reciprocity error {error:.3g}",
+    "passes": "your tests find that {found} ({largest})",
+    "albedo_off": (
+        "{count} of {n} albedo values differ from the grader's (at θV = {theta:.1f}° your "
+        "directional_albedo gives {got:.4g}, the grader measures {truth:.4g})"
+    ),
+    "pairs_off": (
+        "{count} of {n} reciprocity errors differ (at (θL, φL, θV, φV) = ({tl:.0f}°, "
+        "{pl:.0f}°, {tv:.0f}°, {pv:.0f}°) yours is {got:.4g}, the grader's {truth:.4g})"
+    ),
+    "verdicts_off": "your values say the model {energy} and is {reciprocity}; in fact {found}",
+    "same_value": "your {what} gives the same value, {value:.4g}, for every input",
+    "constant": (
+        "{said}: a test must measure the BRDF linked with it (call BRDF(L, V, N, X, Y)), "
+        "whose values change with the directions and the model"
+    ),
+    "negative_error": (
+        "your reciprocity_error is negative at some pairs: the difference |f(L, V) − f(V, L)| "
+        "needs its absolute value"
+    ),
+    "error_above_one": (
+        "your reciprocity_error reaches {value:.3g}, above 1: relative to the larger of "
+        "f(L, V) and f(V, L) the difference is at most 1"
+    ),
+    "negative_albedo": "your directional_albedo is negative at some views: f_r cos θL is not",
+    "albedo_at": "directional_albedo at θV = {theta:.1f}°",
+    "pair_at": (
+        "reciprocity_error at (θL, φL, θV, φV) = ({tl:.1f}°, {pl:.1f}°, {tv:.1f}°, {pv:.1f}°)"
+    ),
+}
+
+
 def joined(names: list[str]) -> str:
     """'D', 'D and G', 'diffuse, D and G'."""
     if len(names) == 1:

@@ -30,6 +30,7 @@ from lab.glsl import CompileError, ShaderCompileError, label_of
 from lab.grading.kinds import CheckKind
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
+from lab.grading.words import PROPERTIES as WORDS
 from lab.ibl.chisquare import random_frame
 from lab.models import Model, load_model, model_names, parse_model
 
@@ -214,9 +215,8 @@ class PropertiesKind(CheckKind):
         rows = self.rows(check)
         k = min(y * 1024 + x, len(rows) - 1)
         if k < self.albedo_count(check):
-            return f"directional_albedo at θV = {rows[k, 2]:.1f}°"
-        angles = ", ".join(f"{a:.1f}°" for a in rows[k])
-        return f"reciprocity_error at (θL, φL, θV, φV) = ({angles})"
+            return WORDS["albedo_at"].format(theta=rows[k, 2])
+        return WORDS["pair_at"].format(**dict(zip(("tl", "pl", "tv", "pv"), rows[k], strict=True)))
 
     # -- compare -------------------------------------------------------------------------
     @staticmethod
@@ -235,8 +235,8 @@ class PropertiesKind(CheckKind):
         gain = bool((values[:n][clear_a] > 1.0).any())
         clear_r = (truth[n:] > RECIPROCAL + tol[n:]) | (truth[n:] < RECIPROCAL - tol[n:])
         broken = bool((values[n:][clear_r] > RECIPROCAL).any())
-        energy = "gains energy" if gain else "conserves energy"
-        return energy, ("not reciprocal" if broken else "reciprocal")
+        energy = WORDS["gains"] if gain else WORDS["conserves"]
+        return energy, (WORDS["not_reciprocal"] if broken else WORDS["reciprocal"])
 
     def compare(self, check: Check, expected: np.ndarray, raw: np.ndarray) -> CheckResult:
         got, truth = raw[0], raw[1]
@@ -252,29 +252,28 @@ class PropertiesKind(CheckKind):
             }
         }
         mine, real = self.verdicts(check, got, truth), self.verdicts(check, truth, truth)
-        found = f"the model {real[0]} and is {real[1]}"
+        found = WORDS["found"].format(energy=real[0], reciprocity=real[1])
         if not off.any() and mine == real:
-            largest = f"largest albedo {truth[:n].max():.3f}"
+            largest = WORDS["largest"].format(albedo=truth[:n].max())
             if len(truth) > n:
-                largest += f", largest reciprocity error {truth[n:].max():.3g}"
-            return passed(check, f"your tests find that {found} ({largest})", **extra)
+                largest = WORDS["largest_error"].format(
+                    albedo=truth[:n].max(), error=truth[n:].max()
+                )
+            return passed(check, WORDS["passes"].format(found=found, largest=largest), **extra)
         parts = []
         if off[:n].any():
             k = int(np.flatnonzero(off[:n])[0])
-            parts.append(
-                f"{int(off[:n].sum())} of {n} albedo values differ from the grader's (at θV = "
-                f"{rows[k, 2]:.1f}° your directional_albedo gives {got[k]:.4g}, the grader "
-                f"measures {truth[k]:.4g})"
-            )
+            said = {"theta": rows[k, 2], "got": got[k], "truth": truth[k]}
+            parts.append(WORDS["albedo_off"].format(count=int(off[:n].sum()), n=n, **said))
         if off[n:].any():
             k = n + int(np.flatnonzero(off[n:])[0])
-            parts.append(
-                f"{int(off[n:].sum())} of {len(truth) - n} reciprocity errors differ (at (θL, "
-                f"φL, θV, φV) = ({rows[k, 0]:.0f}°, {rows[k, 1]:.0f}°, {rows[k, 2]:.0f}°, "
-                f"{rows[k, 3]:.0f}°) yours is {got[k]:.4g}, the grader's {truth[k]:.4g})"
-            )
+            said = dict(zip(("tl", "pl", "tv", "pv"), rows[k], strict=True))
+            said.update(count=int(off[n:].sum()), n=len(truth) - n, got=got[k], truth=truth[k])
+            parts.append(WORDS["pairs_off"].format(**said))
         if mine != real:
-            parts.append(f"your values say the model {mine[0]} and is {mine[1]}; in fact {found}")
+            parts.append(
+                WORDS["verdicts_off"].format(energy=mine[0], reciprocity=mine[1], found=found)
+            )
         return failed(check, "; ".join(parts), **extra)
 
     def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
@@ -313,26 +312,17 @@ class PropertiesKind(CheckKind):
         ):
             tol = check.atol + check.rtol * np.abs(real)
             if len(part) > 1 and np.ptp(part) == 0.0 and np.ptp(real) > tol.max():
-                said.append(f"your {what} gives the same value, {part[0]:.4g}, for every input")
+                said.append(WORDS["same_value"].format(what=what, value=part[0]))
         if not said:  # values the definitions rule out: an error in [0, 1], an albedo >= 0
             errors = np.nan_to_num(mine[n:])
             if (errors < -1e-6).any():
-                return (
-                    "your reciprocity_error is negative at some pairs: the difference "
-                    "|f(L, V) − f(V, L)| needs its absolute value"
-                )
+                return WORDS["negative_error"]
             if (errors > 1.0 + 1e-4).any():
-                return (
-                    f"your reciprocity_error reaches {errors.max():.3g}, above 1: relative to the "
-                    "larger of f(L, V) and f(V, L) the difference is at most 1"
-                )
+                return WORDS["error_above_one"].format(value=errors.max())
             if (np.nan_to_num(mine[:n]) < -1e-6).any():
-                return "your directional_albedo is negative at some views: f_r cos θL is not"
+                return WORDS["negative_albedo"]
             return ""
-        return "; ".join(said) + (
-            ": a test must measure the BRDF linked with it (call BRDF(L, V, N, X, Y)), "
-            "whose values change with the directions and the model"
-        )
+        return WORDS["constant"].format(said="; ".join(said))
 
     # -- report --------------------------------------------------------------------------
     SHOWN_PAIRS = 8  # reciprocity rows in the report: the failing ones, else the largest
@@ -399,6 +389,7 @@ class PropertiesKind(CheckKind):
             "linked_with": linked_with,
             "prototype": PROTOTYPE,
             "reciprocal": RECIPROCAL,
+            "words": WORDS,  # lab/grading/words.py: the page fills the same sentences
         }
 
 

@@ -9,7 +9,7 @@
 // Why in JavaScript too: practice mode checks the student's text in the browser, which never
 // reaches Python; tests/test_web_practice.py holds the two to the same verdicts and words.
 import { floatTexture } from "./assemble.js";
-import { defaults, formatDigits, parseModel } from "./header.js";
+import { defaults, fill, formatDigits, parseModel } from "./header.js";
 import { sentence } from "./diagnosis.js";
 import { el } from "./dom.js";
 
@@ -72,7 +72,8 @@ export function verdicts(check, values, truth) {
     if (k < n) gain ||= Math.abs(t - 1) > tol[k] && v > 1;
     else broken ||= (t > check.reciprocal + tol[k] || t < check.reciprocal - tol[k]) && v > check.reciprocal;
   });
-  return [gain ? "gains energy" : "conserves energy", broken ? "not reciprocal" : "reciprocal"];
+  const W = check.words;
+  return [gain ? W.gains : W.conserves, broken ? W.not_reciprocal : W.reciprocal];
 }
 
 const deg0 = (row) => row.map((a) => `${a.toFixed(0)}°`).join(", ");
@@ -80,32 +81,35 @@ const g4 = (x) => formatDigits(x, 4);
 
 /** The verdict on the student's values `got` (compare()): {passed, message, off}. */
 export function compareProperties(check, got, truth) {
+  const W = check.words; // lab/grading/words.py PROPERTIES
   const n = check.options.albedo_rows;
   const rows = check.rows;
   const wrong = off(check, got, truth);
   const mine = verdicts(check, got, truth);
   const real = verdicts(check, truth, truth);
-  const found = `the model ${real[0]} and is ${real[1]}`;
+  const found = fill(W.found, { energy: real[0], reciprocity: real[1] });
   const same = mine[0] === real[0] && mine[1] === real[1];
   if (!wrong.some(Boolean) && same) {
-    let largest = `largest albedo ${Math.max(...truth.slice(0, n)).toFixed(3)}`;
-    if (truth.length > n) largest += `, largest reciprocity error ${formatDigits(Math.max(...truth.slice(n)), 3)}`;
-    return { passed: true, message: `your tests find that ${found} (${largest})`, off: wrong };
+    const albedo = Math.max(...truth.slice(0, n));
+    const largest = truth.length > n ? fill(W.largest_error, { albedo, error: Math.max(...truth.slice(n)) })
+      : fill(W.largest, { albedo });
+    return { passed: true, message: fill(W.passes, { found, largest }), off: wrong };
   }
   const parts = [];
   const albedoOff = wrong.slice(0, n);
   if (albedoOff.some(Boolean)) {
     const k = albedoOff.indexOf(true);
-    parts.push(`${albedoOff.filter(Boolean).length} of ${n} albedo values differ from the grader's (at θV = ` +
-      `${rows[k][2].toFixed(1)}° your directional_albedo gives ${g4(got[k])}, the grader measures ${g4(truth[k])})`);
+    parts.push(fill(W.albedo_off, { count: albedoOff.filter(Boolean).length, n, theta: rows[k][2], got: got[k],
+      truth: truth[k] }));
   }
   const pairsOff = wrong.slice(n);
   if (pairsOff.some(Boolean)) {
     const k = n + pairsOff.indexOf(true);
-    parts.push(`${pairsOff.filter(Boolean).length} of ${truth.length - n} reciprocity errors differ (at (θL, ` +
-      `φL, θV, φV) = (${deg0(rows[k])}) yours is ${g4(got[k])}, the grader's ${g4(truth[k])})`);
+    const [tl, pl, tv, pv] = rows[k];
+    parts.push(fill(W.pairs_off, { count: pairsOff.filter(Boolean).length, n: truth.length - n, tl, pl, tv, pv,
+      got: got[k], truth: truth[k] }));
   }
-  if (!same) parts.push(`your values say the model ${mine[0]} and is ${mine[1]}; in fact ${found}`);
+  if (!same) parts.push(fill(W.verdicts_off, { energy: mine[0], reciprocity: mine[1], found }));
   return { passed: false, message: parts.join("; "), off: wrong };
 }
 
@@ -138,32 +142,21 @@ const spread = (xs) => Math.max(...xs) - Math.min(...xs); // np.ptp (NaN when an
 /** A test that gives one value whatever it measures, or values its definition rules out
  * (explain()): a phrase, or "". */
 function explainValues(check, got, truth) {
+  const W = check.words;
   const n = check.options.albedo_rows;
   const said = [];
   for (const [what, part, real] of [["directional_albedo", got.slice(0, n), truth.slice(0, n)],
     ["reciprocity_error", got.slice(n), truth.slice(n)]]) {
     const tol = Math.max(...real.map((t) => check.atol + check.rtol * Math.abs(t)));
-    if (part.length > 1 && spread(part) === 0 && spread(real) > tol) {
-      said.push(`your ${what} gives the same value, ${g4(part[0])}, for every input`);
-    }
+    if (part.length > 1 && spread(part) === 0 && spread(real) > tol) said.push(fill(W.same_value, { what, value: part[0] }));
   }
-  if (said.length) {
-    return `${said.join("; ")}: a test must measure the BRDF linked with it (call BRDF(L, V, N, X, Y)), ` +
-      "whose values change with the directions and the model";
-  }
+  if (said.length) return fill(W.constant, { said: said.join("; ") });
   const errors = got.slice(n).map(finite);
-  if (errors.some((e) => e < -1e-6)) {
-    return "your reciprocity_error is negative at some pairs: the difference |f(L, V) − f(V, L)| needs its " +
-      "absolute value";
-  }
+  if (errors.some((e) => e < -1e-6)) return W.negative_error;
   if (errors.some((e) => e > 1 + 1e-4)) {
-    const top = Math.max(...errors.map((e) => (e === Infinity ? Number.MAX_VALUE : e)));
-    return `your reciprocity_error reaches ${formatDigits(top, 3)}, above 1: relative to the larger of ` +
-      "f(L, V) and f(V, L) the difference is at most 1";
+    return fill(W.error_above_one, { value: Math.max(...errors.map((e) => (e === Infinity ? Number.MAX_VALUE : e))) });
   }
-  if (got.slice(0, n).map(finite).some((a) => a < -1e-6)) {
-    return "your directional_albedo is negative at some views: f_r cos θL is not";
-  }
+  if (got.slice(0, n).map(finite).some((a) => a < -1e-6)) return W.negative_albedo;
   return "";
 }
 
@@ -190,9 +183,9 @@ export function diagnoseProperties(exercise, results) {
 
 /** Where row k is, in words (where()): for a loop the guard stopped there. */
 function rowWords(check, k) {
-  const row = check.rows[Math.min(k, check.rows.length - 1)];
-  if (k < check.options.albedo_rows) return `directional_albedo at θV = ${row[2].toFixed(1)}°`;
-  return `reciprocity_error at (θL, φL, θV, φV) = (${row.map((a) => `${a.toFixed(1)}°`).join(", ")})`;
+  const [tl, pl, tv, pv] = check.rows[Math.min(k, check.rows.length - 1)];
+  if (k < check.options.albedo_rows) return fill(check.words.albedo_at, { theta: tv });
+  return fill(check.words.pair_at, { tl, pl, tv, pv });
 }
 
 /** Runs the check on `panel` with the student's `submission` linked to its model: {passed,
