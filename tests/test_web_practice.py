@@ -306,3 +306,37 @@ def test_ibl_render_names_a_stopped_loop_as_the_grader(page, tmp_path):
     assert not graded[IBL][0] and "did not end within" in graded[IBL][1]
     assert shown == [False, graded[IBL][1].replace(str(path), SAMPLER_FILE)]
     assert page.errors == []
+
+
+# Exercise 14 (an estimator exercise: the student's estimate is the IBL view's pass): its
+# ibl_render checks in the page, driven by the checks' data (environment, turn, samples).
+ESTIMATOR = "14_reflection_equation"
+ESTIMATOR_FILES = [
+    "solutions/14_reflection_equation/reflection_equation.glsl",
+    "tests/exercise_14/wrong/no_pdf.glsl",
+    "tests/exercise_14/wrong/no_mean.glsl",
+    "tests/exercise_14/wrong/mirror_lookup.glsl",
+]
+
+
+@pytest.mark.parametrize("file", ESTIMATOR_FILES, ids=lambda f: Path(f).stem)
+def test_estimator_renders_give_the_graders_verdicts(page, tmp_path, file):
+    text = (ROOT / file).read_text(encoding="utf-8")
+    path = tmp_path / "reflection_equation.glsl"
+    path.write_text(text, encoding="utf-8")
+    graded = grade(ESTIMATOR, path, tmp_path)
+    practice(page, ESTIMATOR, text)
+    shown = dict(
+        (name, (passed, message))
+        for name, passed, message in page.evaluate(
+            "brdfLab.exercises.runSampling()"
+            ".then(rs => rs.map(r => [r.check.name, r.passed, r.message]))"
+        )
+    )
+    assert set(shown) == set(graded)
+    for name, (passed, message) in graded.items():
+        assert shown[name][0] == passed, (name, shown[name][1], message)
+        mine = ibl_shape(shown[name][1].split(". Likely: ")[0].rstrip("."))
+        assert mine == ibl_shape(unlocated(message).split(". Likely: ")[0].rstrip(".")), name
+    assert all(p for p, _ in graded.values()) == file.startswith("solutions/")
+    assert page.errors == []

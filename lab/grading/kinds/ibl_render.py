@@ -107,9 +107,9 @@ class IBLRenderKind(SampledKind):
 
     @staticmethod
     def rotation(check: Check) -> float:
-        """The environment's turn about the vertical in degrees, as render() draws it (here
-        none; render() and this change together), which the page's render follows."""
-        return 0.0
+        """The environment's turn about the vertical in degrees, as render() draws it and the
+        page's render follows: the light's azimuth phi_i (hidden mode draws it)."""
+        return check.phi_i
 
     @staticmethod
     def passes(check: Check) -> int:
@@ -126,7 +126,7 @@ class IBLRenderKind(SampledKind):
             o["samples"],
             self.passes(check),
             check.seed,
-            check.phi_i,  # the environment turned by the light's azimuth (hidden: drawn)
+            self.rotation(check),
         )
 
     def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:

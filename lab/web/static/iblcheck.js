@@ -169,7 +169,7 @@ const ENV_TERMS = "terms/environment.glsl";
 
 /** Renders the check's passes with the student's sampler (sampling.render_raw): the stacked
  * (3, size, size, 3) float32 render, top row first; or {loop} where the guard stopped one. */
-export async function renderPasses(panel, check) {
+export async function renderPasses(panel, check, exercise = {}) {
   const lab = panel.lab;
   const { samples, environment } = check.options;
   const size = check.size;
@@ -177,7 +177,13 @@ export async function renderPasses(panel, check) {
   const gl = panel.gl;
   const env = environmentTextures(gl, map);
   const brdf = STRATEGIES.indexOf("brdf");
-  const transform = (source) => insertBeforeView(source, [[lab.files[ENV_TERMS], `shaders/${ENV_TERMS}`]]);
+  // The environment terms before the view, as the grader's IBL renderer puts them; an
+  // estimator's stand-in map (the page's other views lack one) leaves, its line kept blank.
+  const standIn = exercise.estimator?.stand_in.trim();
+  const transform = (source) => {
+    if (standIn) source.lines = source.lines.map((line) => (line.trim() === standIn ? "" : line));
+    insertBeforeView(source, [[lab.files[ENV_TERMS], `shaders/${ENV_TERMS}`]]);
+  };
   const seed = (check.seed + salt(panel.model.code)) % 2 ** 30;
   const pixels = size * size;
   const raw = new Float32Array(9 * pixels);
@@ -219,7 +225,7 @@ export async function renderPasses(panel, check) {
 /** Runs the check on the panel (its values already the check's): {passed, message,
  * renders} as the grader judges and pictures it, or {loop} (a loop the guard stopped). */
 export async function runIblRender(panel, check, exercise) {
-  const { raw, loop } = await renderPasses(panel, check);
+  const { raw, loop } = await renderPasses(panel, check, exercise);
   if (loop) return { loop }; // exercise.js says where, as the grader
   const luma = panel.lab.constants.LUMA;
   const result = judgeRender(check, raw, luma);
