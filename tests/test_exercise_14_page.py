@@ -1,7 +1,7 @@
-"""Exercise 14 on the page: its checks are the grader's alone (ibl_render), so the page
-checks that the file compiles, as the grader's build does: the solution compiles in WebGL
-with the grader's texts around it (exercises.json `estimator`), and a slip is reported at
-the student's own line, as `brdf-lab grade` reports it."""
+"""Exercise 14 on the page: the file compiles as the grader's build does: the solution
+compiles in WebGL with the grader's texts around it (exercises.json `estimator`), and a slip
+is reported at the student's own line on every check, as `brdf-lab grade` reports it. (Its
+ibl_render checks' verdicts in the page: tests/test_web_practice.py.)"""
 
 from __future__ import annotations
 
@@ -20,12 +20,18 @@ pytestmark = pytest.mark.skipif(chromium_path() is None, reason="no Chromium")
 
 
 def compile_row(page, text: str) -> str:  # noqa: F811
+    """The checks' rows: each waits for its run (✓ compiled) or names the compile error."""
     if page.evaluate("brdfLab.exercises?.exercise?.name ?? ''") != NAME:
         page.evaluate("n => brdfLab.openExercise(n)", NAME)
     runs = page.evaluate("brdfLab.exercises.runs")
     page.evaluate("t => brdfLab.editor.editor.setText(t)", text)
     page.wait_for_function(f"brdfLab.exercises.runs > {runs}")
-    return page.evaluate("document.querySelector('[data-check=compile]').textContent")
+    rows = page.evaluate(
+        "[...document.querySelectorAll('#exercise ul.checks li[data-check]')].map(li => "
+        "li.classList.contains('pending') ? '✓ compiled, runs on request' : li.textContent)"
+    )
+    assert rows and len(set(row[0] for row in rows)) == 1, rows  # all compile, or none
+    return " ".join(rows)
 
 
 def test_the_page_compiles_the_estimate_as_the_grader_does(page, tmp_path):  # noqa: F811
