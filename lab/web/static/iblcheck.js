@@ -5,7 +5,9 @@
 // from lab/grading/sampling.py: a z-test of the two means per ring of equal view angle and
 // over the sphere with both estimators' own variances (judge_render, bias_z, t_limit) and
 // the RMS error at `samples` per pixel against `factor` times the solution's
-// (render_errors); the likely mistake by the converged ring means (ring_deviation).
+// (render_errors); the likely mistake by the converged ring means (ring_deviation; the
+// grader's further z-test against each stored mistake's render, kinds/ibl_render.py
+// converge_distance, needs those renders, which the page is not sent: its note says so).
 // Why in JavaScript too: practice mode judges the student's text in the browser, which
 // never reaches Python. What can be data is data: exercises.json carries the reference,
 // each pixel's group and ring (from the grader's local_view), the group names, the normal
@@ -239,7 +241,8 @@ export async function runIblRender(panel, check, exercise) {
   // What the page does not do as the grader does, said plainly beside the pictures.
   result.note = "The page draws other random numbers than brdf-lab grade (the grader salts the seed with its " +
     "preprocessed text of your file): the figures differ from the grader's by noise, and a verdict at the " +
-    "limit may differ; brdf-lab grade decides.";
+    "limit may differ. The page names a likely mistake only by how its render converges (ring means); the " +
+    "grader also tests your render against each stored mistake's. brdf-lab grade decides.";
   const caption = check.captions; // the grader's report captions (IBLRenderKind.captions)
   result.renders = [[caption["converged reference"], reference, 1], [caption.solution, reference, 0],
     [caption.yours, raw, 0], [caption["yours, converged"], raw, 1]].map(([title, stack, k]) => ({ title, size, rgb: image(stack, k) }));
