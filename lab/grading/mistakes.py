@@ -215,6 +215,30 @@ def _single_edit(code: str, start: int, end: int, new: str) -> tuple[str, str]:
     return old_line, new_line
 
 
+def _in_divisor(code: str, at: int) -> bool:
+    """Whether the factor at offset `at` divides (`x / PI`, `x / (4.0 * PI * a)`) rather than
+    multiplies (`2.0 * PI * u`, `a / b * PI`): what its removal does to the term."""
+    line = code[code.rfind("\n", 0, at) + 1 : at]
+    depth = 0
+    for i in range(len(line) - 1, -1, -1):
+        c = line[i]
+        if c == ")":
+            depth += 1
+        elif c == "(" and depth:
+            depth -= 1
+        elif c == "(":
+            before = line[:i].rstrip()
+            if before.endswith("/"):
+                return True
+            if before and (before[-1].isalnum() or before[-1] == "_"):
+                return False  # a call's argument
+        elif depth == 0 and c == "/":
+            return not line[i + 1 :].strip()  # only the operand right after '/' divides
+        elif depth == 0 and c in "+-,=;?:<>":
+            return False
+    return False
+
+
 def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
     """Single-edit variants of the solution's code, each with a hint worded from the edit.
 
@@ -258,11 +282,16 @@ def mutants(code: str, limit: int = MAX_MUTANTS) -> list[Variant]:
             "a factor 1/π is missing: every value of that term is π times too large",
         )
     for match in re.finditer(r"\bPI\s*\*\s*", body):
+        divides = _in_divisor(code, start + match.start())
         add(
             start + match.start(),
             start + match.end(),
             "",
-            "a factor π is missing from a denominator: that term is π times too large",
+            "a factor π is missing from a denominator: that term is π times too large"
+            if divides
+            # A product's own size says little about the result's (it may be a normaliser
+            # that divides later): no direction, so never the wrong one.
+            else "a factor π is missing from a product: check each product that should hold π",
         )
     for match in re.finditer(r"(?<![\w.])(\d+\.\d+)(?![\w.])", body):
         wrong = CONSTANTS.get(match.group(1))
