@@ -235,9 +235,30 @@ def test_bad_submissions_fail_with_a_message_and_never_crash(grader, tmp_path):
     assert not result.passed and "NaN, infinite or negative" in result.message
 
 
-def test_the_page_leaves_the_exercise_out():
+def test_the_page_gets_the_graders_textures_and_turn():
+    """practice() sends each sampler's texture as the grader binds it (the files' bytes) and
+    the turn it renders with, and no file path (exercises.json is served); the page's
+    renders are held to the grader's verdicts in tests/test_web_practice.py."""
+    import base64
+    import json
+
+    from lab.grading.kinds.object import read_texture
+
     for check in EXERCISE.checks:
-        assert kind_of(check).practice(EXERCISE, check, {}) is None
+        kind = kind_of(check)
+        with np.load(EXERCISE.references / "values.npz") as values:
+            sent = kind.practice(EXERCISE, check, values)
+        assert sent["view"] == "grade_object"
+        assert (sent["yaw_rad"], sent["pitch_rad"]) == kind.turn(check)
+        assert set(sent["textures"]) == set(check.options["textures"])
+        for sampler, path in check.options["textures"].items():
+            texture = sent["textures"][sampler]
+            image = read_texture(path)
+            assert (texture["height"], texture["width"]) == image.shape[:2]
+            assert base64.b64decode(texture["data"]) == image.tobytes()
+    from lab.web.exercises import exercise_entry
+
+    assert str(EXERCISE.folder.parent) not in json.dumps(exercise_entry(EXERCISE))
 
 
 @pytest.fixture(scope="module")

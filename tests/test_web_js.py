@@ -49,6 +49,7 @@ MIRRORS = {
     "submission.js": "test_web_exercise.py",
     "properties.js": "test_web_practice.py",
     "iblcheck.js": "test_web_practice.py",
+    "objectcheck.js": "test_web_practice.py",
 }
 
 

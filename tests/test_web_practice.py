@@ -340,3 +340,67 @@ def test_estimator_renders_give_the_graders_verdicts(page, tmp_path, file):
         assert mine == ibl_shape(unlocated(message).split(". Likely: ")[0].rstrip(".")), name
     assert all(p for p, _ in graded.values()) == file.startswith("solutions/")
     assert page.errors == []
+
+
+# -- object: exercise 13's textured object (static/objectcheck.js) --------------------------
+SVBRDF = "13_svbrdf"
+SVBRDF_FILE = "svbrdf.glsl"
+# Stored mistakes of solutions/13_svbrdf/mistakes.toml (by index): the anisotropy's axes
+# swapped, the mask inverted, the textures read at (v, u).
+SVBRDF_MISTAKES = [0, 1, 6]
+
+
+def svbrdf_files() -> list[tuple[str, str]]:
+    from lab.grading import mistakes
+    from lab.grading.exercise import load_exercise
+
+    exercise = load_exercise(ROOT / "exercises" / SVBRDF)
+    solution = exercise.solution.read_text(encoding="utf-8")
+    known = mistakes.known_mistakes(exercise)
+    return [
+        ("solution", solution),
+        ("stub", (ROOT / "exercises" / SVBRDF / SVBRDF_FILE).read_text(encoding="utf-8")),
+        *((known[i].key, known[i].apply(solution)) for i in SVBRDF_MISTAKES),
+    ]
+
+
+@pytest.mark.parametrize("key", ["solution", "stub", *(f"mistake.{i}" for i in SVBRDF_MISTAKES)])
+def test_object_practice_gives_the_graders_verdicts(page, tmp_path, key):
+    """The page draws the grader's object view with the check's textures and judges the
+    image as the sphere kind: every check's verdict and first sentence are the grader's."""
+    text = dict(svbrdf_files())[key]
+    path = tmp_path / SVBRDF_FILE
+    path.write_text(text, encoding="utf-8")
+    graded = grade(SVBRDF, path, tmp_path)
+    shown = practice(page, SVBRDF, text)
+    assert set(shown) == set(graded)
+    assert page.evaluate("brdfLab.exercises.exercise.grader_only.length") == 0
+    for name, (passed, message) in graded.items():
+        assert shown[name][0] == passed, (name, shown[name][1], message)
+        if not passed:  # the grader's words and likely mistake; its figures within 2 %
+            # (SwiftShader's renders differ from llvmpipe's in a few edge pixels)
+            assert same_words(shown[name][1], unlocated(message), 0.02), (name, shown[name][1])
+    assert all(p for p, _ in graded.values()) == (key == "solution")
+    assert page.errors == []
+
+
+def test_object_practice_results_are_accessible(page, output_dir):
+    """A failed object check shows the reference, the student's render and their difference
+    as named images; axe finds no violation; pictures at the page's user sizes."""
+    from axe import violations
+
+    practice(page, SVBRDF, dict(svbrdf_files())["mistake.1"])
+    pictures = page.locator('#exercise .exercise-images[data-check="torus.front"] canvas')
+    assert pictures.count() == 3
+    for i in range(3):
+        assert pictures.nth(i).get_attribute("role") == "img"
+        assert pictures.nth(i).get_attribute("aria-label")
+    assert "Only brdf-lab grade" not in page.locator("#exercise").inner_text()
+    assert violations(page) == []
+    shown = page.locator('#exercise .exercise-images[data-check="torus.front"]')
+    for width, height in [(1024, 768), (390, 844)]:
+        page.set_viewport_size({"width": width, "height": height})
+        shown.scroll_into_view_if_needed()
+        page.screenshot(path=output_dir / f"web_practice_object_{width}.png")
+    page.set_viewport_size({"width": 1300, "height": 900})
+    assert page.errors == []

@@ -6,7 +6,8 @@ pairs of probe and polar checks) and committed reference values or images; toler
 points and the stub come from exercise.toml. The page renders the student's file in WebGL
 and compares as the probe, polar and sphere kinds do, runs a sampler's chi-square and pdf
 integral checks (static/sampling.js) and IBL render checks (static/iblcheck.js), and links
-exercise 11's tests with their models (static/properties.js); a kind it cannot run (its
+exercise 11's tests with their models (static/properties.js), draws exercise 13's textured
+object with the check's textures (static/objectcheck.js); a kind it cannot run (its
 `practice` gives None) is listed as the grader's alone.
 """
 

@@ -13,10 +13,14 @@ seed, of the same size and character: smooth periodic fields with soft or sharp 
 the committed texture's range of values (a grey texture stays grey, a colour one gets random
 colours), and turns the object to a random yaw; a file that hard-codes what the committed
 textures hold fails there.
+
+The page's practice mode draws the same view with the committed textures (`practice`:
+their bytes, the shape and the turn; lab/web/static/objectcheck.js binds them).
 """
 
 from __future__ import annotations
 
+import base64
 import math
 import re
 from pathlib import Path
@@ -210,8 +214,30 @@ class ObjectKind(SphereKind):
             "the material (the handout's table), read it with texture(sampler, uv)"
         )
 
-    def practice(self, exercise, check: Check, values) -> dict | None:
-        return None  # the page has no textured object yet: left out of its practice mode
+    def practice(self, exercise, check: Check, values) -> dict:
+        """The sphere kind's reference image, and what the page binds and sets to draw the
+        grader's view: each sampler's texture (RGBA bytes, first row at v = 0, base64) and
+        the shape's index and the turn in radians (committed mode: the files, the yaw)."""
+        yaw, pitch = self.turn(check)
+        textures = {
+            sampler: {
+                "width": int(image.shape[1]),
+                "height": int(image.shape[0]),
+                "data": base64.b64encode(np.ascontiguousarray(image).tobytes()).decode(),
+            }
+            for sampler, image in self.images(check).items()
+        }
+        return {
+            **super().practice(exercise, check, values),
+            "textures": textures,
+            "first_unit": FIRST_UNIT,
+            "view": VIEW,
+            "shape_index": SHAPES.index(check.options["shape"]),
+            "yaw_rad": yaw,
+            "pitch_rad": pitch,
+            # the files' paths (absolute here) stay out of exercises.json
+            "options": {k: check.options[k] for k in ("shape", "yaw", "pitch")},
+        }
 
 
 KIND = ObjectKind()

@@ -299,7 +299,7 @@ async function inflate(base64, Type) {
 export async function prepare(exercise) {
   for (const check of exercise.checks) {
     if (check.stored || !check.diagnosis) continue;
-    const image = check.kind === "sphere";
+    const image = ["sphere", "object"].includes(check.kind); // uint8 RGBA images
     const stored = { candidates: {}, terms: {} };
     for (const [key, text] of Object.entries(check.diagnosis.candidates)) {
       const data = await inflate(text, image ? Uint8Array : Float32Array);
@@ -351,7 +351,7 @@ export function explain(exercise, check, expected, got, angles, evaluate, luma) 
   const hints = exercise.hints || {};
   const stored = check.stored || { candidates: {}, terms: {} };
   const candidates = Object.fromEntries(Object.entries(stored.candidates).filter(([k]) => k in hints));
-  if (check.kind === "sphere") {
+  if (check.kind === "sphere" || check.kind === "object") {
     const key = nearestImage(check, got, candidates);
     return key ? sentence(hints[key]) : "";
   }

@@ -14,6 +14,7 @@ import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
+import { objectInputs } from "./objectcheck.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -23,6 +24,8 @@ const fromBase64 = (text, Type) => {
 const PENDING = "not run for this version: press “run the sampling checks” (they take seconds)";
 // Checks that run on request (seconds, not every keystroke): sampling.js's and iblcheck.js's.
 const ON_REQUEST = [...SAMPLED_KINDS, "ibl_render"];
+// Checks judged as images (compare_image): the sphere's and the textured object's.
+const IMAGE_KINDS = ["sphere", "object"];
 
 // -- comparisons (lab/grading/checks.py) -----------------------------------------------------
 const tonemap = (x) => {
@@ -181,7 +184,7 @@ function probeValues(panel, degrees, n) {
  * references as `brdf-lab grade` reads them; the student's model renders what it needs. */
 function diagnose(panel, exercise, check, result) {
   const C = panel.lab.constants;
-  if (check.kind === "sphere") return explain(exercise, check, null, result.student.data, null, null, C.LUMA);
+  if (IMAGE_KINDS.includes(check.kind)) return explain(exercise, check, null, result.student.data, null, null, C.LUMA);
   const degrees = fromBase64(check.angles, Float32Array);
   const angles = rows4(degrees, check.count);
   const evaluate = (params, at) => {
@@ -215,7 +218,7 @@ export function runCheck(panel, check, submission = panel.model) {
   const saved = panel.values;
   panel.values = checkValues(panel.model, check.params);
   try {
-    if (check.kind === "sphere") {
+    if (IMAGE_KINDS.includes(check.kind)) {
       const C = panel.lab.constants;
       const dirs = [];
       const rgb = [];
@@ -225,9 +228,11 @@ export function runCheck(panel, check, submission = panel.model) {
         rgb.push(light ? light[2] : [0, 0, 0]);
       }
       const size = check.size;
+      // An object check also binds its textures and sets its shape and turn (objectcheck.js).
+      const object = check.kind === "object" ? objectInputs(panel.gl, check) : { uniforms: {}, textures: [] };
       const raw = topFirst(panel.run(check.view, size, size, { u_resolution: [size, size], u_light_dir: dirs,
-        u_light_rgb: rgb, u_ambient: check.ambient, u_multiply_cos: true },
-      { preamble: `const int LIGHT_COUNT = ${check.lights.length};` }), size, size);
+        u_light_rgb: rgb, u_ambient: check.ambient, u_multiply_cos: true, ...object.uniforms },
+      { preamble: `const int LIGHT_COUNT = ${check.lights.length};`, textures: object.textures }), size, size);
       check.referencePixels ??= fromBase64(check.reference, Uint8Array);
       if (panel.lastLoop) return loopFailure(check, panel, sphereWhere(check, panel.lastLoop));
       const student = toneImage(raw, size);
@@ -389,10 +394,10 @@ export class ExerciseMode {
       r.message));
     const pictures = [];
     for (const r of this.results) {
-      if (r.check.kind !== "sphere" || !r.signed) continue;
+      if (!IMAGE_KINDS.includes(r.check.kind) || !r.signed) continue;
       const size = r.check.size;
       const canvas = (image, title) => {
-        const c = el("canvas", { width: size, height: size, title });
+        const c = el("canvas", { width: size, height: size, title, role: "img", "aria-label": title });
         c.getContext("2d").putImageData(image, 0, 0);
         return el("figure", {}, c, el("figcaption", {}, title));
       };

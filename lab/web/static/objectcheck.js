@@ -1,0 +1,43 @@
+// An `object` check's draw in the page (practice mode, exercise 13): the grader's view
+// (shaders/views/grade_object.glsl) with the check's textures bound as
+// lab/grading/kinds/object.py binds them (RGBA8, bilinear, repeating, from unit first_unit
+// on) and its shape and turn as that kind sets them. The image is then judged as a sphere
+// check's (exercise.js).
+//
+// Why in JavaScript too: practice mode renders the student's text in the browser, which
+// never reaches Python; tests/test_web_practice.py holds the verdicts to the grader's.
+
+/** The check's textures on `gl`, made once per context (the bytes come from
+ * ObjectKind.practice: first row at v = 0, as the grader uploads them). */
+function checkTextures(gl, check) {
+  if (check.glTextures?.gl === gl) return check.glTextures.list;
+  const list = Object.entries(check.textures).map(([sampler, { width, height, data }]) => {
+    const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, width, height, 0, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    return { sampler, texture };
+  });
+  check.glTextures = { gl, list };
+  return list;
+}
+
+/** Uniforms and bound textures (index = unit) for panel.run(check.view, ...): the shape,
+ * the turn and each sampler's unit, besides the lights the caller sets. */
+export function objectInputs(gl, check) {
+  const first = check.first_unit;
+  const textures = new Array(first); // holes: draw() binds nothing there (a model's table keeps unit 0)
+  const uniforms = { u_shape: check.shape_index, u_yaw: check.yaw_rad, u_pitch: check.pitch_rad };
+  checkTextures(gl, check).forEach(({ sampler, texture }, i) => {
+    textures.push(texture);
+    uniforms[sampler] = first + i;
+  });
+  return { uniforms, textures };
+}
