@@ -241,6 +241,7 @@ def test_the_page_gets_the_graders_textures_and_turn():
     renders are held to the grader's verdicts in tests/test_web_practice.py."""
     import base64
     import json
+    import zlib
 
     from lab.grading.kinds.object import read_texture
 
@@ -255,7 +256,7 @@ def test_the_page_gets_the_graders_textures_and_turn():
             texture = sent["textures"][sampler]
             image = read_texture(path)
             assert (texture["height"], texture["width"]) == image.shape[:2]
-            assert base64.b64decode(texture["data"]) == image.tobytes()
+            assert zlib.decompress(base64.b64decode(texture["data"])) == image.tobytes()
     from lab.web.exercises import exercise_entry
 
     assert str(EXERCISE.folder.parent) not in json.dumps(exercise_entry(EXERCISE))

@@ -289,7 +289,8 @@ export function sentence(text) {
 }
 
 // -- stored references: inflated once per exercise ---------------------------------------
-async function inflate(base64, Type) {
+/** Base64 of zlib-deflated bytes (lab/web/exercises.py _packed) as a `Type` array. */
+export async function inflate(base64, Type) {
   const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
   const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate"));
   return new Type(await new Response(stream).arrayBuffer());

@@ -14,7 +14,7 @@ import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
-import { objectInputs } from "./objectcheck.js";
+import { objectInputs, prepareObject } from "./objectcheck.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -285,6 +285,7 @@ export class ExerciseMode {
     const exercise = (await this.load()).find((e) => e.name === name);
     if (!exercise) throw new Error(`no exercise ${name}`);
     await prepare(exercise); // the stored mistakes' values, inflated once
+    for (const check of exercise.checks) await prepareObject(check); // its textures
     this.exercise = exercise;
     const path = exercise.student_file;
     lab.models[exercise.name] = buildSubmission(exercise, exercise.stub, path, lab.models);

@@ -6,13 +6,22 @@
 //
 // Why in JavaScript too: practice mode renders the student's text in the browser, which
 // never reaches Python; tests/test_web_practice.py holds the verdicts to the grader's.
+import { inflate } from "./diagnosis.js";
+
+/** Inflates an object check's textures once (check.texels: sampler -> RGBA bytes). */
+export async function prepareObject(check) {
+  if (check.kind !== "object" || check.texels) return;
+  const texels = {};
+  for (const [sampler, { data }] of Object.entries(check.textures)) texels[sampler] = await inflate(data, Uint8Array);
+  check.texels = texels;
+}
 
 /** The check's textures on `gl`, made once per context (the bytes come from
  * ObjectKind.practice: first row at v = 0, as the grader uploads them). */
 function checkTextures(gl, check) {
   if (check.glTextures?.gl === gl) return check.glTextures.list;
-  const list = Object.entries(check.textures).map(([sampler, { width, height, data }]) => {
-    const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
+  const list = Object.entries(check.textures).map(([sampler, { width, height }]) => {
+    const bytes = check.texels[sampler];
     const texture = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, texture);
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
