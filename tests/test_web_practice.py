@@ -404,3 +404,20 @@ def test_object_practice_results_are_accessible(page, output_dir):
         page.screenshot(path=output_dir / f"web_practice_object_{width}.png")
     page.set_viewport_size({"width": 1300, "height": 900})
     assert page.errors == []
+
+
+def test_object_practice_names_a_stopped_loop_as_the_grader(page, tmp_path):
+    """An SVBRDF whose loop never ends: the loop guard stops it and every check says where,
+    in the grader's words (the object's pixel)."""
+    text = dict(svbrdf_files())["solution"]
+    last = "    return mix(f_paint, f_metal, mask);"
+    assert last in text
+    text = text.replace(last, "    float k = 0.0;\n    while (k >= 0.0) { k += 1.0; }\n" + last)
+    path = tmp_path / SVBRDF_FILE
+    path.write_text(text, encoding="utf-8")
+    graded = grade(SVBRDF, path, tmp_path)
+    shown = practice(page, SVBRDF, text)
+    for name, (passed, message) in graded.items():
+        assert not passed and "did not end within" in message and "of the object" in message
+        assert shown[name] == (False, message.replace(str(path), SVBRDF_FILE)), name
+    assert page.errors == []

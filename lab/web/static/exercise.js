@@ -234,7 +234,11 @@ export function runCheck(panel, check, submission = panel.model) {
         u_light_rgb: rgb, u_ambient: check.ambient, u_multiply_cos: true, ...object.uniforms },
       { preamble: `const int LIGHT_COUNT = ${check.lights.length};`, textures: object.textures }), size, size);
       check.referencePixels ??= fromBase64(check.reference, Uint8Array);
-      if (panel.lastLoop) return loopFailure(check, panel, sphereWhere(check, panel.lastLoop));
+      if (panel.lastLoop) {
+        const stop = panel.lastLoop;
+        const where = check.kind === "object" ? `pixel (${stop.x}, ${size - 1 - stop.y}) of the object` : sphereWhere(check, stop);
+        return loopFailure(check, panel, where);
+      }
       const student = toneImage(raw, size);
       const result = compareImage(check, check.referencePixels, raw, student.data);
       return { ...result, student, compared: true };
