@@ -364,11 +364,19 @@ def svbrdf_files() -> list[tuple[str, str]]:
     ]
 
 
-@pytest.mark.parametrize("key", ["solution", "stub", *(f"mistake.{i}" for i in SVBRDF_MISTAKES)])
+# A texture never read (no stored mistake): the grader names the sampler (ObjectKind.explain).
+UNREAD_MASK = ("float mask = texture(mask_map, uv).r;", "float mask = 0.3;")
+
+
+@pytest.mark.parametrize(
+    "key", ["solution", "stub", *(f"mistake.{i}" for i in SVBRDF_MISTAKES), "unread_mask"]
+)
 def test_object_practice_gives_the_graders_verdicts(page, tmp_path, key):
     """The page draws the grader's object view with the check's textures and judges the
-    image as the sphere kind: every check's verdict and first sentence are the grader's."""
-    text = dict(svbrdf_files())[key]
+    image as the sphere kind: every check's verdict, words and likely mistake are the
+    grader's."""
+    files = dict(svbrdf_files())
+    text = files.get(key) or files["solution"].replace(*UNREAD_MASK)
     path = tmp_path / SVBRDF_FILE
     path.write_text(text, encoding="utf-8")
     graded = grade(SVBRDF, path, tmp_path)

@@ -36,6 +36,12 @@ from lab.views.object import SHAPES
 VIEW = "grade_object"
 FUNCTION = "vec3 SVBRDF(vec2 uv, vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"
 SAMPLER_NAME = re.compile(r"^[A-Za-z_]\w*$")
+# What explain() says of samplers the program never reads (a str.format template: the page
+# fills it from exercises.json, lab/web/static/objectcheck.js).
+UNREAD = (
+    "your file never reads {names}: each texture holds a parameter of the material (the "
+    "handout's table), read it with texture(sampler, uv)"
+)
 FIRST_UNIT = 1  # texture units from here on: unit 0 is left to models that bind data
 _FILES: dict[tuple[str, float], np.ndarray] = {}  # committed textures, by path and mtime
 _GENERATED: dict[tuple, dict[str, np.ndarray]] = {}  # hidden mode's, by seed and files
@@ -210,10 +216,7 @@ class ObjectKind(SphereKind):
         unread = [name for name in sorted(check.options["textures"]) if name not in program]
         if not unread:
             return ""
-        return (
-            f"your file never reads {', '.join(unread)}: each texture holds a parameter of "
-            "the material (the handout's table), read it with texture(sampler, uv)"
-        )
+        return UNREAD.format(names=", ".join(unread))
 
     def practice(self, exercise, check: Check, values) -> dict:
         """The sphere kind's reference image, and what the page binds and sets to draw the
@@ -233,6 +236,7 @@ class ObjectKind(SphereKind):
             **super().practice(exercise, check, values),
             "textures": textures,
             "first_unit": FIRST_UNIT,
+            "unread_words": UNREAD,
             "view": VIEW,
             "shape_index": SHAPES.index(check.options["shape"]),
             "yaw_rad": yaw,

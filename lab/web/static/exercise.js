@@ -14,7 +14,7 @@ import { explain, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
-import { objectInputs, prepareObject } from "./objectcheck.js";
+import { objectInputs, prepareObject, unreadTextures } from "./objectcheck.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -184,7 +184,10 @@ function probeValues(panel, degrees, n) {
  * references as `brdf-lab grade` reads them; the student's model renders what it needs. */
 function diagnose(panel, exercise, check, result) {
   const C = panel.lab.constants;
-  if (IMAGE_KINDS.includes(check.kind)) return explain(exercise, check, null, result.student.data, null, null, C.LUMA);
+  if (IMAGE_KINDS.includes(check.kind)) {
+    const said = explain(exercise, check, null, result.student.data, null, null, C.LUMA);
+    return said || check.kind !== "object" ? said : unreadTextures(panel, check);
+  }
   const degrees = fromBase64(check.angles, Float32Array);
   const angles = rows4(degrees, check.count);
   const evaluate = (params, at) => {

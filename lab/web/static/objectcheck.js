@@ -6,7 +6,8 @@
 //
 // Why in JavaScript too: practice mode renders the student's text in the browser, which
 // never reaches Python; tests/test_web_practice.py holds the verdicts to the grader's.
-import { inflate } from "./diagnosis.js";
+import { inflate, sentence } from "./diagnosis.js";
+import { fill } from "./header.js";
 
 /** Inflates an object check's textures once (check.texels: sampler -> RGBA bytes). */
 export async function prepareObject(check) {
@@ -49,4 +50,12 @@ export function objectInputs(gl, check) {
     uniforms[sampler] = first + i;
   });
   return { uniforms, textures };
+}
+
+/** The grader's explanation where no known mistake matched (ObjectKind.explain): the
+ * samplers the student's program never reads (the compiler drops them from its uniforms). */
+export function unreadTextures(panel, check) {
+  const compiled = panel.program(check.view, `const int LIGHT_COUNT = ${check.lights.length};`);
+  const unread = Object.keys(check.textures).sort().filter((name) => !(name in compiled.uniforms));
+  return unread.length ? sentence(fill(check.unread_words, { names: unread.join(", ") })) : "";
 }
