@@ -188,11 +188,9 @@ def test_pdf_waits_for_the_monte_carlo_demo_or_says_snapshot(deck, deck_page):
         page.evaluate(
             "document.querySelectorAll('iframe.ibl-demo').forEach(f => f.src = f.dataset.src)"
         )
-        # Every demo frame compiles its programs at once (SwiftShader, a busy CI machine).
-        page.wait_for_function(
+        page.wait_for_function(  # the frames compile at once: slow on a busy CI machine
             "[...document.querySelectorAll('iframe.ibl-demo')].every(f => f.contentWindow"
-            " && f.contentWindow.iblDemo && f.contentWindow.iblDemo.panels.length)",
-            timeout=120_000,
+            " && f.contentWindow.iblDemo && f.contentWindow.iblDemo.panels.length)", timeout=120_000
         )
         _wait_for_convergence(page, 0.2)  # far too short for 2048 samples
         (samples, target), *_ = page.evaluate(IBL_PROGRESS)
