@@ -17,7 +17,7 @@ import sys
 from PyQt6.QtWidgets import QApplication
 from lab.app.bench import HEAVY_MODULES
 from lab.app.state import load_any
-from lab.app.window import MainWindow
+from lab.app.window import MainWindow, close_for_exit
 
 app = QApplication([])
 window = MainWindow()
@@ -30,6 +30,7 @@ window.request()
 while window.frames == before:
     app.processEvents()
 print(",".join(m for m in HEAVY_MODULES if m in sys.modules) or "none")
+close_for_exit(app, window)
 """
 
 

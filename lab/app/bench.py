@@ -104,7 +104,7 @@ def measure(app, window, move, count: int, watch: PaintWatch) -> tuple[np.ndarra
 def run_bench(app, launched: float) -> int:
     from lab.app.params import slider_value
     from lab.app.state import load_any
-    from lab.app.window import MainWindow
+    from lab.app.window import MainWindow, close_for_exit
 
     window = MainWindow()
     for name in BENCH_MODELS:
@@ -208,7 +208,7 @@ def run_bench(app, launched: float) -> int:
         f"targets (p95 <= {TARGET_P95_MS:.0f} ms, launch <= {TARGET_LAUNCH_S:.2f} s): "
         f"{verdict}; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores"
     )
-    window.close()
+    close_for_exit(app, window)
     return 0
 
 

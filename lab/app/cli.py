@@ -106,7 +106,7 @@ def cmd_app(args) -> int:
         from lab.app.bench import run_bench
 
         return run_bench(app, launched)
-    from lab.app.window import MainWindow
+    from lab.app.window import MainWindow, close_for_exit
 
     window = MainWindow()
     if preset is not None:
@@ -122,7 +122,9 @@ def cmd_app(args) -> int:
     window.show()
     if args.presenter:
         window.toggle_presenter()
-    return app.exec()
+    code = app.exec()
+    close_for_exit(app, window)
+    return code
 
 
 def cmd_watch(args) -> int:

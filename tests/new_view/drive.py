@@ -33,7 +33,7 @@ if os.environ.get("DISPLAY"):
     from PyQt6.QtWidgets import QApplication
 
     from lab.app.renderer import AppRenderer
-    from lab.app.window import MainWindow
+    from lab.app.window import MainWindow, close_for_exit
     from lab.gl import get_context
     from lab.models import load_model
 
@@ -44,7 +44,7 @@ if os.environ.get("DISPLAY"):
     widget = window.docks["hemi"].widget()
     widget.redraw()
     found["dock_text"] = widget.label.text()
-    window.close()
+    close_for_exit(app, window)
 
 from lab.web.browser import chromium  # noqa: E402
 from lab.web.site import export, serving  # noqa: E402
