@@ -49,7 +49,9 @@ def practice(page, text: str) -> dict[str, tuple[bool, str]]:
     runs = page.evaluate("brdfLab.exercises.runs")
     page.evaluate("t => brdfLab.editor.editor.setText(t)", text)
     page.wait_for_function(f"brdfLab.exercises.runs > {runs}", timeout=120_000)
-    results = page.evaluate("brdfLab.exercises.results.map(r => [r.check.name, r.passed, r.message])")
+    results = page.evaluate(
+        "brdfLab.exercises.results.map(r => [r.check.name, r.passed, r.message])"
+    )
     return {name: (passed, message) for name, passed, message in results}
 
 
@@ -107,7 +109,9 @@ def test_the_pages_table_is_the_graders(opened, check, output_dir):
           const check = mode.exercise.checks.find((c) => c.name === name);
           const bytes = new Uint8Array(mode.tables.texels(check, layers).buffer);
           let text = "";
-          for (let i = 0; i < bytes.length; i += 8192) text += String.fromCharCode(...bytes.subarray(i, i + 8192));
+          for (let i = 0; i < bytes.length; i += 8192) {
+            text += String.fromCharCode(...bytes.subarray(i, i + 8192));
+          }
           return btoa(text);
         }""",
         [check, LAYERS],
@@ -122,7 +126,9 @@ def test_the_pages_table_is_the_graders(opened, check, output_dir):
         lit = smooth > 1e-3
         assert 0.015 < np.std(mine[lit] / smooth[lit]) < 0.025
     assert ms < 2000, ms
-    (output_dir / "web_tables_build.json").write_text(json.dumps({"table_ms": ms, "open_s": seconds}))
+    (output_dir / "web_tables_build.json").write_text(
+        json.dumps({"table_ms": ms, "open_s": seconds})
+    )
 
 
 def test_practice_gives_the_graders_verdicts(opened, tmp_path, output_dir):
@@ -181,8 +187,9 @@ def test_building_the_tables_is_said_in_words(page):
         """async (name) => {
           const mode = brdfLab.exercises;
           const seen = [];
-          const watch = new MutationObserver(() => seen.push(document.querySelector('#exercise').textContent));
-          watch.observe(document.querySelector('#exercise'), { childList: true, subtree: true });
+          const root = document.querySelector('#exercise');
+          const watch = new MutationObserver(() => seen.push(root.textContent));
+          watch.observe(root, { childList: true, subtree: true });
           const exercise = (await mode.load()).find((e) => e.name === name);
           const saved = exercise.checks[0].table[0].model;
           await mode.open(name);
@@ -200,4 +207,3 @@ def test_building_the_tables_is_said_in_words(page):
     broken = {name: (passed, message) for name, passed, message in said["results"]}
     passed, message = broken["bins.index"]
     assert not passed and "cannot make the table" in message and "no_such_model" in message
-
