@@ -38,7 +38,7 @@ class TableSpec:
     model: str
     params: tuple = ()  # sorted (name, value) pairs
     ranges: tuple = ()  # sorted (name, (low, high)) pairs: hidden mode draws within
-    noise: float = 0.0  # relative Gaussian error per bin (lab.measured.tabulate)
+    noise: float = 0.0  # relative error per bin (lab.measured.tabulate: a hash, nearly Gaussian)
     dims: tuple[int, int, int] = MERL_DIMS
     uniform: str = UNIFORM
 
