@@ -301,11 +301,11 @@ export class ExerciseMode {
     if (!lab.order.includes(exercise.name)) lab.order.push(exercise.name);
     // One exercise at a time: the last one's panel goes (else, exercise after exercise, the
     // page runs out of panels and the next one cannot open).
+    this.tables?.release(); // the last exercise's tables, while their panel is there
     if (this.panel && this.panel.name !== exercise.name && lab.panels.includes(this.panel)) {
       removePanel(lab, this.panel);
     }
     this.panel = lab.panels.find((p) => p.name === exercise.name) || addPanel(lab, exercise.name);
-    this.tables?.release();
     this.tables = Object.assign(tables, { panel: this.panel });
     if (tables.needed) { // exercise 12: its checks' tables, made here (tables.js), the tab busy for a moment
       this.root.replaceChildren(el("p", { class: "practice-note", role: "status" }, "building table…"));
@@ -343,7 +343,7 @@ export class ExerciseMode {
       }
       // The sampling checks run on request (seconds, not every keystroke).
       if (ON_REQUEST.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
-      if (!this.tables.use(check)) return { check, passed: false, message: this.tables.error };
+      if (!this.tables.use(check)) return { check, passed: false, message: this.tables.error ?? "building table…" };
       try {
         const result = runCheck(this.panel, check, built);
         if (result.compared && !result.passed) {

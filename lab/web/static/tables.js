@@ -158,7 +158,8 @@ export class Tables {
   }
 
   release() {
-    for (const texture of this.textures.values()) this.panel.gl.deleteTexture(texture);
+    const gl = this.panel?.gl; // none: the panel went, and its textures with it
+    for (const texture of this.textures.values()) gl?.deleteTexture(texture);
     this.textures.clear();
   }
 }
