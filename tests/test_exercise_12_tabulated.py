@@ -60,7 +60,8 @@ def _directions(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def test_the_solution_is_the_labs_measured_model(grader, name):
     """On the grader's table, at the check's rows: the solution gives exactly what the lab's
     measured model gives (same texture, same arithmetic), and the float64 numpy lookup of
-    lab.measured.merl agrees within the check's tolerance."""
+    lab.measured.merl agrees within half the check's tolerance, or at ill-conditioned rows
+    within what float32 moves the lookup there."""
     check = _check(name)
     mode = check.params["interpolation"]
     kind = kind_of(check)
@@ -70,7 +71,14 @@ def test_the_solution_is_the_labs_measured_model(grader, name):
     lab = grader.renderer.eval_angles(measured, {"interpolation": mode}, angles)
     np.testing.assert_array_equal(mine, lab)
     want = lookup(measured.table, *_directions(angles), mode)
-    np.testing.assert_allclose(mine, want, rtol=0.5 * check.rtol, atol=check.atol)
+    # Half the check's rtol, or where a row is ill-conditioned (grazing: phi_d moves by a
+    # hundredth of a bin when L and V are rounded to float32) the lookup's own float32
+    # change there (tables.spread, before it is grown into the grader's tolerance).
+    moved = 0.0 if mode == "nearest" else tables.spread(check, angles) / tables.SPREAD_GROW
+    allowed = check.atol + 0.5 * check.rtol * np.abs(want) + moved
+    assert (np.abs(mine[:, :3] - want) <= allowed).all(), np.argwhere(
+        np.abs(mine[:, :3] - want) > allowed
+    )
     assert (mine[:, 0] > 0).mean() > 0.8  # the rows mostly see the table, not the horizon
 
 
@@ -265,12 +273,30 @@ def test_a_table_survives_the_diagnosiss_copies_of_the_model(grader):
     assert math.isclose(float(model.table_source.table.dims[0]), 90.0)
 
 
-def test_the_page_leaves_checks_that_read_a_table_to_the_grader():
+def test_the_page_gets_the_graders_tolerances_or_leaves_tables_to_the_grader(monkeypatch):
+    """exercises.json carries each value check with the grader's own tolerance, made from
+    its table (wider than the check's plain one where the lookup is ill-conditioned: the
+    page makes the table itself, tests/test_web_tables.py); where no OpenGL is to be had
+    for that table, the checks are the grader's alone, said why."""
+    import lab.grading.kinds as kinds
+    from lab.grading.kinds import VALUES_FILE
+    from lab.grading.kinds.values import floats_b64
     from lab.web.exercises import grader_only
 
+    with np.load(EXERCISE.references / VALUES_FILE) as data:
+        values = {k: data[k] for k in data.files}
+    check = _check("bins.lookup")
+    entry = kind_of(check).practice(EXERCISE, check, values)
+    expected = values[check.name][:, :3]
+    angles = kind_of(check).angles(check)
+    tolerance = kind_of(check).tolerance(check, angles, expected, expected)
+    assert entry["tolerance"] == floats_b64(tolerance)
+    assert (tolerance > check.atol + check.rtol * np.abs(expected) * 1.01).any()
+    assert grader_only(EXERCISE, values) == []
+    monkeypatch.setattr(kinds, "made_here", lambda check: not check.table)
     for check in EXERCISE.checks:
-        assert kind_of(check).practice(EXERCISE, check, {}) is None
-    assert all("table" in entry["why"] for entry in grader_only(EXERCISE, {}))
+        assert kind_of(check).practice(EXERCISE, check, values) is None
+    assert all("no OpenGL" in entry["why"] for entry in grader_only(EXERCISE, values))
 
 
 def test_any_kind_reads_a_table_the_check_names(grader):

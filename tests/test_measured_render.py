@@ -102,6 +102,27 @@ def test_tabulate_noise_is_relative(renderer):
     assert abs(ratio.std() - 0.05) < 0.01 and abs(ratio.mean() - 1) < 0.01
 
 
+@pytest.mark.parametrize("seed", [0, 11])
+def test_the_tabulate_view_makes_tabulates_table(renderer, seed):
+    """shaders/views/tabulate.glsl (the web page's table, static/tables.js) draws what
+    tabulate makes, layer by layer: the same noise to float32 rounding (the hash and its
+    float steps are the numpy twin's) on the model's values at the bin centres."""
+    from lab.models import load_model
+
+    dims = (12, 10, 16)
+    values = {"alpha": 0.3, "kd": (0.1, 0.2, 0.3)}
+    want = tabulate("ggx", values, dims=dims, noise=0.05, seed=seed, renderer=renderer).rgb
+    smooth = tabulate("ggx", values, dims=dims, renderer=renderer).rgb
+    model = load_model("ggx")
+    for layer in (0, 5, 11):
+        uniforms = {"u_dims": dims, "u_layer": layer, "u_noise": 0.05, "u_seed": seed}
+        fbo = renderer._run(model, "tabulate", values, (dims[2], dims[1]), uniforms)
+        got = renderer._read(fbo)[..., :3]
+        assert np.allclose(got, want[layer], rtol=2e-5, atol=1e-7), layer
+        lit = smooth[layer] > 1e-3  # and the noise is there: 5 % of the smooth values
+        assert 0.02 < np.std(got[lit] / smooth[layer][lit]) < 0.08
+
+
 def test_lookup_near_the_specular_peak(renderer, gl_clean):
     """theta_h of a few 1e-4 rad must land in bins 0-1, as float64 numpy puts it."""
     table = merl.MerlTable.from_rgb(

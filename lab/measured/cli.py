@@ -192,7 +192,7 @@ def register(sub) -> None:
         type=float,
         default=0.0,
         metavar="SIGMA",
-        help="relative Gaussian noise, e.g. 0.05",
+        help="relative noise (sigma, nearly Gaussian), e.g. 0.05",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the noise")
     p.add_argument(

@@ -7,7 +7,8 @@ points and the stub come from exercise.toml. The page renders the student's file
 and compares as the probe, polar and sphere kinds do, runs a sampler's chi-square and pdf
 integral checks (static/sampling.js) and IBL render checks (static/iblcheck.js), and links
 exercise 11's tests with their models (static/properties.js), draws exercise 13's textured
-object with the check's textures (static/objectcheck.js); a kind it cannot run (its
+object with the check's textures (static/objectcheck.js) and makes exercise 12's tables on
+its GPU (static/tables.js); a kind it cannot run (its
 `practice` gives None) is listed as the grader's alone.
 """
 
@@ -77,7 +78,7 @@ def grader_only(exercise: Exercise, values) -> list[dict]:
         if kind_of(check).practice(exercise, check, values) is None:
             why = f"the page cannot run {check.kind} checks"
             if check.table:
-                why = "the page cannot bind the table this check reads (its `table` key)"
+                why = "the page lacks this check's table (no OpenGL where exercises.json was made)"
             out.append({"name": check.name, "kind": check.kind, "points": check.points, "why": why})
     return out
 

@@ -41,7 +41,7 @@ from lab.grading.spec import (
     parse_ranges,
     parse_same,
 )
-from lab.grading.tables import bound, parse_table
+from lab.grading.tables import bound, made_here, parse_table
 from lab.grading.visuals import difference_legend, polar_svg
 
 if TYPE_CHECKING:
@@ -83,8 +83,10 @@ class CheckKind:
 
             @functools.wraps(practice)
             def practise(self, exercise, check, values, _own=practice):
-                # The page has no tables to bind: a check that reads one is the grader's.
-                return None if check.table else _own(self, exercise, check, values)
+                # The page makes a check's table itself (static/tables.js); the grader's is
+                # made here too, for the tolerances it gives (tables.spread). No OpenGL here:
+                # the check is the grader's alone.
+                return _own(self, exercise, check, values) if made_here(check) else None
 
             practise.binds_tables = True  # type: ignore[attr-defined]
             cls.practice = practise

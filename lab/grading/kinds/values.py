@@ -162,7 +162,7 @@ class ValueKind(CheckKind):
             "expected": floats_b64(expected),
             "count": len(angles),
         }
-        tolerance = row_tolerance(check, angles, expected)
+        tolerance = self.tolerance(check, angles, expected, expected)  # a table's too
         if tolerance is not None:  # the grader's own, row by row
             entry["tolerance"] = floats_b64(tolerance)
         return entry

@@ -15,6 +15,7 @@ import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
 import { objectInputs, prepareObject, unreadTextures } from "./objectcheck.js";
+import { Tables } from "./tables.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -295,14 +296,23 @@ export class ExerciseMode {
     for (const check of exercise.checks) await prepareObject(check); // its textures
     this.exercise = exercise;
     const path = exercise.student_file;
-    lab.models[exercise.name] = buildSubmission(exercise, exercise.stub, path, lab.models);
+    const tables = new Tables(null, exercise.checks); // made once the panel is (its GPU's)
+    lab.models[exercise.name] = tables.bindTo(buildSubmission(exercise, exercise.stub, path, lab.models));
     if (!lab.order.includes(exercise.name)) lab.order.push(exercise.name);
     // One exercise at a time: the last one's panel goes (else, exercise after exercise, the
     // page runs out of panels and the next one cannot open).
+    this.tables?.release(); // the last exercise's tables, while their panel is there
     if (this.panel && this.panel.name !== exercise.name && lab.panels.includes(this.panel)) {
       removePanel(lab, this.panel);
     }
     this.panel = lab.panels.find((p) => p.name === exercise.name) || addPanel(lab, exercise.name);
+    this.tables = Object.assign(tables, { panel: this.panel });
+    if (tables.needed) { // exercise 12: its checks' tables, made here (tables.js), the tab busy for a moment
+      this.root.replaceChildren(el("p", { class: "practice-note", role: "status" }, "building table…"));
+      this.root.hidden = false;
+      await new Promise((resolve) => setTimeout(resolve, 30)); // the words show first
+      tables.build();
+    }
     lab.requestRender();
     await this.openEditor(this.panel, exercise.stub, {
       path,
@@ -311,7 +321,7 @@ export class ExerciseMode {
       // with models of their own compile it their way (properties.js).
       build: (text) => {
         this.built = null;
-        this.built = buildSubmission(exercise, text, path, lab.models);
+        this.built = tables.bindTo(buildSubmission(exercise, text, path, lab.models));
         return this.built;
       },
       onResult: (errors) => this.run(errors),
@@ -333,6 +343,7 @@ export class ExerciseMode {
       }
       // The sampling checks run on request (seconds, not every keystroke).
       if (ON_REQUEST.includes(check.kind)) return { check, passed: false, pending: true, message: PENDING };
+      if (!this.tables.use(check)) return { check, passed: false, message: this.tables.error ?? "building table…" };
       try {
         const result = runCheck(this.panel, check, built);
         if (result.compared && !result.passed) {

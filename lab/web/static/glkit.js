@@ -58,6 +58,7 @@ export function setUniform(gl, compiled, name, value) {
     case gl.FLOAT_VEC3: gl.uniform3fv(location, flat); break;
     case gl.FLOAT_VEC4: gl.uniform4fv(location, flat); break;
     case gl.INT_VEC2: gl.uniform2iv(location, flat); break;
+    case gl.INT_VEC3: gl.uniform3iv(location, flat); break;
     default: gl.uniform1i(location, Number(flat)); // int, bool, samplers
   }
 }
