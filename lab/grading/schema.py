@@ -160,7 +160,7 @@ CHECK: tuple[Key, ...] = (
         "integer",
         256,
         "random direction pairs (probe: plus 18 special ones)",
-        ("probe", "properties", "bin_edges"),
+        ("probe", "properties", "bin_edges", "sh"),
     ),
     Key(
         "seed",
@@ -175,6 +175,7 @@ CHECK: tuple[Key, ...] = (
             "properties",
             "bin_edges",
             "object",
+            "sh",
         ),
     ),
     Key(
@@ -182,14 +183,14 @@ CHECK: tuple[Key, ...] = (
         "number",
         2e-3,
         "relative tolerance of each value",
-        ("probe", "polar", "properties", "bin_edges"),
+        ("probe", "polar", "properties", "bin_edges", "sh"),
     ),
     Key(
         "atol",
         "number",
         1e-4,
         "absolute tolerance of each value",
-        ("probe", "polar", "properties", "bin_edges"),
+        ("probe", "polar", "properties", "bin_edges", "sh"),
     ),
     Key(
         "theta_i",
@@ -229,6 +230,9 @@ FIELD_MEANINGS: dict[tuple[str, str], str] = {
     ("properties", "target"): "the model tested: a library model or a .glsl file in the folder",
     ("properties", "albedo_rows"): "viewing angles directional_albedo is run at (1 to 64)",
     ("properties", "grazing_rows"): "how many of them lie between 80 and 88 degrees",
+    ("sh", "target"): "the library model whose lobe sh_coefficient projects; unset: sh_basis",
+    ("sh", "order"): "the highest band l of the harmonics checked (0 to 8)",
+    ("sh", "incidences"): "light directions the lobe is projected at (1 to 16)",
     ("object", "shape"): "the lit object: torus, sphere, rounded box or bumpy sphere",
     ("object", "yaw"): "the object's turn about the vertical, degrees (hidden mode draws it)",
     ("object", "pitch"): "its tilt towards the viewer, degrees",
