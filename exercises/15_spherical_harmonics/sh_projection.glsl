@@ -5,8 +5,8 @@
 // Read README.md first: it gives the formulas, the conventions and the quadrature.
 // @include terms/brdf_stand_in.glsl
 
-const int N_THETA = 48;   // the midpoint rule's steps in theta over [0, pi/2]
-const int N_PHI = 96;     // and in phi over [0, 2 pi)
+const int N_THETA = 32;   // the midpoint rule's steps in theta over [0, pi/2]
+const int N_PHI = 64;     // and in phi over [0, 2 pi)
 
 // The associated Legendre function P_l^m(x) for 0 <= m <= l, with the Condon-Shortley
 // phase (-1)^m (the handout's recurrence).

@@ -5,8 +5,8 @@
 // frame's own coordinates: N = (0, 0, 1), X = (1, 0, 0), Y = (0, 1, 0).
 // @include terms/brdf_stand_in.glsl
 
-const int N_THETA = 48;   // the midpoint rule's steps in theta over [0, pi/2]
-const int N_PHI = 96;     // and in phi over [0, 2 pi)
+const int N_THETA = 32;   // the midpoint rule's steps in theta over [0, pi/2]
+const int N_PHI = 64;     // and in phi over [0, 2 pi)
 
 // The associated Legendre function P_l^m(x), 0 <= m <= l, with the Condon-Shortley phase
 // (-1)^m: P_m^m = (-1)^m (2m - 1)!! (1 - x^2)^(m/2), P_{m+1}^m = (2m + 1) x P_m^m, then
