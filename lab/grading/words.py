@@ -200,7 +200,9 @@ def joined(names: list[str]) -> str:
 SH = {
     "basis_at": "sh_basis({l}, {m}, w) at (θ, φ) = ({theta:.1f}°, {phi:.1f}°)",
     "coefficient_at": "sh_coefficient({l}, {m}, L) for L at (θi, φi) = ({theta:.1f}°, {phi:.1f}°)",
-    "basis_passes": "your sh_basis matches the lab's real harmonics at {n} values (largest {largest:.3g})",
+    "basis_passes": (
+        "your sh_basis matches the lab's real harmonics at {n} values (largest {largest:.3g})"
+    ),
     "coefficients_pass": (
         "your coefficients match the lab's projection of the lobe; the lobe rebuilt from "
         "them is {error:.2%} away from the lab's (L2 over the sphere)"

@@ -17,7 +17,7 @@ MODES = (None, 1)
 
 def submissions() -> dict[str, Path]:
     """label -> file: the wrong ones here (wrong/: written before the tuning; heldout/: after
-it, never tuned on), the solution, its correct rewrites and the stub."""
+    it, never tuned on), the solution, its correct rewrites and the stub."""
     solution = ROOT / "solutions" / EXERCISE.name
     files = {f"wrong/{p.stem}": p for p in sorted((HERE / "wrong").glob("*.glsl"))}
     # Written after the tuning and graded as they came: the held-out figure.

@@ -76,8 +76,13 @@ class SHKind(CheckKind):
         """(n, 4) rows l, m, theta, phi (degrees): the direction w of a basis check, the
         light L of a projection check; every (l, m) up to the order at each direction."""
         o = check.options
-        return _rows(int(check.seed), int(o["order"]), self.projects(check), int(check.pairs),
-                     int(o["incidences"]))  # fmt: skip
+        return _rows(
+            int(check.seed),
+            int(o["order"]),
+            self.projects(check),
+            int(check.pairs),
+            int(o["incidences"]),
+        )
 
     # -- render --------------------------------------------------------------------------
     def render(self, renderer, model: Model, check: Check) -> np.ndarray:
@@ -195,10 +200,8 @@ class SHKind(CheckKind):
             "truth": truth[k, c],
             "error": error,
         }
-        return failed(
-            check, WORDS["coefficients_off" if self.projects(check) else "basis_off"].format(**said),
-            **extra,
-        )  # fmt: skip
+        words = WORDS["coefficients_off" if self.projects(check) else "basis_off"]
+        return failed(check, words.format(**said), **extra)
 
     def differs(self, check: Check, values: np.ndarray, reference: np.ndarray) -> bool:
         values = np.asarray(values)
