@@ -1,7 +1,7 @@
 """Exercise 15 (a BRDF lobe in spherical harmonics) and its check kind, `sh`.
 
 The lab's values against closed forms; the solution full and the stub 0 in reference mode
-and for 30 hidden seeds; the correct rewrites full on 10 seeds; each stored mistake loses
+and for 25 hidden seeds; the correct rewrites full on 10 seeds; each stored mistake loses
 points with its own hint; the wrong submissions (tests/exercise_15/wrong, written before
 the tuning) all lose points and the correct rewrites none; bad settings get words.
 """
@@ -24,7 +24,7 @@ from lab.grading.spec import ExerciseError
 
 ROOT = Path(__file__).resolve().parents[1]
 EXERCISE = load_exercise(ROOT / "exercises" / "15_spherical_harmonics")
-SEEDS = 30
+SEEDS = 25
 HERE = ROOT / "tests" / "exercise_15"
 # Loaded under its own name: each exercise folder of tests/ has a measure.py.
 _spec = importlib.util.spec_from_file_location("exercise_15_measure", HERE / "measure.py")

@@ -142,7 +142,8 @@ class SHKind(CheckKind):
         return found.copy()
 
     def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:
-        return np.asarray(raw, np.float64)
+        """float32, as the GPU gives them: every stored mistake's values are kept per check."""
+        return np.asarray(raw, np.float32)
 
     def where(self, check: Check, x: int, y: int) -> str:
         rows = self.rows(check)
