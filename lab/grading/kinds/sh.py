@@ -46,7 +46,7 @@ def lm_pairs(order: int) -> np.ndarray:
 
 class SHKind(CheckKind):
     name = "sh"
-    order = 70
+    order = 72
     purpose_of = ""  # its directions and incidences are drawn from `seed`
     fields = {"target": "", "order": 4, "incidences": 2}
 
