@@ -210,3 +210,21 @@ def test_bad_settings_and_a_brdf_of_ones_own_get_words(tmp_path):
     path.write_text(code + own, encoding="utf-8")
     error = prepare(EXERCISE, path).error
     assert f"sh_projection.glsl:{len(code.splitlines()) + 1}: remove your definition" in error
+
+
+def test_a_loop_that_never_ends_is_named_at_its_line_in_both_parts(grader, tmp_path):
+    """The lab's values are computed before the student's program runs, so the loop guard
+    the grader reads after the render is the student's (a projection check too)."""
+    path = tmp_path / EXERCISE.student_file
+    code = EXERCISE.solution.read_text(encoding="utf-8")
+    loop = "for (int k = 1; k <= m; ++k) {"
+    path.write_text(code.replace(loop, "for (int k = 1; k >= 0; ++k) {"), encoding="utf-8")
+    line = code[: code.index(loop)].count("\n") + 1
+    reading = prepare(EXERCISE, path)
+    from lab.grading.kinds import sh
+
+    for name in ("basis.low_bands", "phong"):
+        check = check_named(name)
+        sh._TRUTHS.clear()  # the lab's values rendered anew, as for a first grade
+        result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
+        assert f"sh_projection.glsl:{line}: the loop at line {line} did not end" in result.message
