@@ -216,9 +216,15 @@ class SHKind(CheckKind):
         """The known mistake whose values the student's match at every row (within the
         check's tolerance), the closest of them."""
         got = np.nan_to_num(np.asarray(got, np.float64), nan=np.inf)
+        rows = self.rows(check)
         best, best_off = None, np.inf
         for key, other in candidates.items():
             if np.shape(other) != got.shape:
+                continue
+            # A mistake that moves one harmonic alone (a Lambert lobe has one) is told apart
+            # from another only by that value's size: no evidence of which mistake it is.
+            moved = self._off(check, other[0], other[1])
+            if len({(int(l), int(m)) for l, m in rows[moved, :2]}) < 2:  # noqa: E741
                 continue
             scale = check.atol + check.rtol * np.abs(other[0])
             off = float(np.max(np.abs(got[0] - other[0]) / scale)) if got.shape[1] else 0.0
