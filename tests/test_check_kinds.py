@@ -62,6 +62,7 @@ def test_the_lab_kinds_are_registered():
         "properties",  # exercise 11's tests of a linked model
         "bin_edges",  # exercise 12's pairs on a table's bin grid
         "object",  # exercise 13's spatially varying BRDF on the textured object
+        "sh",  # exercise 15's real harmonics and a linked model's lobe coefficients
     )
 
 

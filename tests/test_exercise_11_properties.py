@@ -281,3 +281,18 @@ def test_values_the_definitions_rule_out_are_named(grader):
     assert "negative at some pairs" in said(np.concatenate([truth[:n], -truth[n:]]))
     assert "above 1" in said(np.concatenate([truth[:n], 3.0 * truth[n:] + 0.5]))
     assert "albedo is negative" in said(np.concatenate([-truth[:n], truth[n:]]))
+
+
+def test_a_loop_that_never_ends_is_named_at_its_line(grader, tmp_path):
+    """The measurement is made before the student's tests run, so the loop guard the grader
+    reads after the render is theirs, at a first grade too (it read the measurement's)."""
+    path = tmp_path / EXERCISE.student_file
+    code = EXERCISE.solution.read_text(encoding="utf-8")
+    loop = "for (int j = 0; j < N_PHI; ++j) {"
+    path.write_text(code.replace(loop, "for (int j = 0; j >= 0; ++j) {"), encoding="utf-8")
+    line = code[: code.index(loop)].count("\n") + 1
+    reading = prepare(EXERCISE, path)
+    check = next(c for c in EXERCISE.checks if c.name == "phong")
+    P._TRUTHS.clear()  # measured anew, as for a first grade
+    result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
+    assert f"properties.glsl:{line}: the loop at line {line} did not end" in result.message

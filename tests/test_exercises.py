@@ -258,6 +258,9 @@ def test_every_exercise_has_the_files_of_its_handout():
             assert {"chi_square", "pdf_integral", "ibl_render"} <= kinds, exercise.name
         elif kinds == {"properties"}:  # tests of the models linked with them (11)
             assert len({c.options["target"] for c in exercise.checks}) >= 5, exercise.name
+        elif kinds == {"sh"}:  # the harmonics and a lobe's coefficients (15)
+            projected = {c.options["target"] for c in exercise.checks} - {""}
+            assert len(projected) >= 2 and len(projected) < len(exercise.checks), exercise.name
         elif kinds == {"object"}:  # a spatially varying BRDF on the textured object (13)
             assert all(c.options["textures"] for c in exercise.checks), exercise.name
             assert len({c.options["shape"] for c in exercise.checks}) >= 2, exercise.name

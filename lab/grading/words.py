@@ -194,3 +194,31 @@ def joined(names: list[str]) -> str:
     if len(names) == 1:
         return names[0]
     return DIAGNOSIS["listed"].format(most=", ".join(names[:-1]), last=names[-1])
+
+
+# An `sh` check (exercise 15: kinds/sh.py).
+SH = {
+    "basis_at": "sh_basis({l}, {m}, w) at (θ, φ) = ({theta:.1f}°, {phi:.1f}°)",
+    "coefficient_at": "sh_coefficient({l}, {m}, L) for L at (θi, φi) = ({theta:.1f}°, {phi:.1f}°)",
+    "basis_passes": (
+        "your sh_basis matches the lab's real harmonics at {n} values (largest {largest:.3g})"
+    ),
+    "coefficients_pass": (
+        "your coefficients match the lab's projection of the lobe; the lobe rebuilt from "
+        "them is {error:.2%} away from the lab's (L2 over the sphere)"
+    ),
+    "basis_off": (
+        "{count} of {n} harmonic values differ from the lab's (sh_basis({l}, {m}, w) at "
+        "(θ, φ) = ({theta:.1f}°, {phi:.1f}°) gives {got:.4g}, the lab's Y is {truth:.4g})"
+    ),
+    "coefficients_off": (
+        "{count} of {n} coefficients differ from the lab's projection (sh_coefficient({l}, "
+        "{m}, L) at θi = {theta:.1f}° gives {got:.4g}, the lab's is {truth:.4g}); the lobe "
+        "rebuilt from yours is {error:.1%} away from the lab's (L2 over the sphere)"
+    ),
+    "sign_only": (
+        "your values have the lab's sizes but the opposite sign wherever {where}: "
+        "look at the sign convention there"
+    ),
+    "scaled": "your values are the lab's times {factor:.4g} throughout: a constant factor is off",
+}

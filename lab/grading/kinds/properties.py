@@ -175,6 +175,8 @@ class PropertiesKind(CheckKind):
         target = target_model(check.options["target"])
         program = linked(model, target)
         rows = self.rows(check)
+        # The measurement first: the grader reads the loop guard of the last render.
+        truth = self.truth(renderer, target, check)
         X, Y, N = self.frame(check)
         width = min(len(rows), 1024)
         height = -(-len(rows) // width)
@@ -192,7 +194,7 @@ class PropertiesKind(CheckKind):
             raise _from_target(err, model, target) from None
         finally:
             texture.release()
-        return np.stack([got, self.truth(renderer, target, check)])
+        return np.stack([got, truth])
 
     def truth(self, renderer, target: Model, check: Check) -> np.ndarray:
         """The grader's measurement at the check's rows, made once per setting and process
