@@ -281,3 +281,25 @@ def test_values_the_definitions_rule_out_are_named(grader):
     assert "negative at some pairs" in said(np.concatenate([truth[:n], -truth[n:]]))
     assert "above 1" in said(np.concatenate([truth[:n], 3.0 * truth[n:] + 0.5]))
     assert "albedo is negative" in said(np.concatenate([-truth[:n], truth[n:]]))
+
+
+def test_a_finer_grid_passes_and_a_stopped_loop_is_named_at_its_line(grader, tmp_path):
+    """The guard counts every pass of a nested loop: a correct rule on a finer grid than the
+    handout's (128 x 1024 = 131,072 inner passes; 20,000 once stopped a 96-step rule) gets
+    full marks, and a loop the guard does stop is named at its line, not as values that
+    differ (the grader's own measurement used to render after the student's program)."""
+    path = tmp_path / EXERCISE.student_file
+    code = EXERCISE.solution.read_text(encoding="utf-8")
+    check = next(c for c in EXERCISE.checks if c.name == "phong")
+    finer = code.replace("N_THETA = 64;", "N_THETA = 128;").replace("N_PHI = 256;", "N_PHI = 1024;")
+    path.write_text(finer, encoding="utf-8")
+    reading = prepare(EXERCISE, path)
+    assert grader.grade(EXERCISE, check, reading.model, reading.code, None).passed
+    endless = code.replace("N_PHI = 256;", "N_PHI = 8192;")  # 64 x 8,192 = 524,288
+    path.write_text(endless, encoding="utf-8")
+    reading = prepare(EXERCISE, path)
+    result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
+    line = next(n for n, t in enumerate(endless.splitlines(), 1) if "j < N_PHI" in t)
+    assert not result.passed
+    assert f"properties.glsl:{line}: the loop at line {line} did not end within" in result.message
+    assert "every pass of the loops around it" in result.message, result.message
