@@ -13,7 +13,8 @@ from pathlib import Path
 import pytest
 
 HERE = Path(__file__).resolve().parent / "heldout"
-BATCHES = (HERE, HERE.parent / "heldout2", HERE.parent / "heldout3")
+BATCHES = (HERE, HERE.parent / "heldout2")
+THIRD = HERE.parent / "heldout3"  # graded in a fixture of its own: each fits the test timeout
 # heldout3 (exercises 01-14) grades in about 160 s here: the test takes its cases for the
 # exercises the older batches leave out (11-14), every correct rewrite and two wrong ones
 # each, among them the three whose hints pointed the wrong way or whose rewrite lost points
@@ -54,10 +55,10 @@ NAMED_OR_LOCALISED = 0.70  # the issue's target
 WRONG_WAY_CEILING = 1
 
 
-@pytest.fixture(scope="module")
-def outcomes() -> dict:
+def graded(batches: tuple[Path, ...]) -> dict:
+    """(batch, file, mode) -> (case, outcome) for every case of the batches (SUBSET's)."""
     out = {}
-    for batch in BATCHES:
+    for batch in batches:
         measure.CASES = batch  # where grade() copies each case from
         cases = measure.load_cases(batch / "cases.toml")
         if batch.name in SUBSET:
@@ -72,8 +73,24 @@ def outcomes() -> dict:
     return out
 
 
+@pytest.fixture(scope="module")
+def outcomes() -> dict:
+    return graded(BATCHES)
+
+
+@pytest.fixture(scope="module")
+def third() -> dict:
+    return graded((THIRD,))
+
+
+# The fixture and the ceiling of wrong-way hints for it: heldout3 has none after its fixes.
+BATCH_FIXTURES = {"outcomes": WRONG_WAY_CEILING, "third": 0}
+
+
 @pytest.mark.parametrize("mode", MODES)
-def test_every_wrong_submission_loses_points_and_no_correct_one_does(outcomes, mode):
+@pytest.mark.parametrize("which", list(BATCH_FIXTURES))
+def test_every_wrong_submission_loses_points_and_no_correct_one_does(request, which, mode):
+    outcomes = request.getfixturevalue(which)
     graded = [(c, o) for (_, _, m), (c, o) in outcomes.items() if m == mode]
     lost_right = [c.label for c, o in graded if c.correct and o.lost]
     kept_wrong = [c.label for c, o in graded if not c.correct and not o.lost]
@@ -81,10 +98,12 @@ def test_every_wrong_submission_loses_points_and_no_correct_one_does(outcomes, m
 
 
 @pytest.mark.parametrize("mode", MODES)
-def test_hints_name_or_localise_most_mistakes_and_rarely_mislead(outcomes, mode):
+@pytest.mark.parametrize("which", list(BATCH_FIXTURES))
+def test_hints_name_or_localise_most_mistakes_and_rarely_mislead(request, which, mode):
+    outcomes = request.getfixturevalue(which)
     wrong = [o for (_, _, m), (c, o) in outcomes.items() if m == mode and not c.correct]
     helped = sum(o.named or o.localised for o in wrong)
     misled = sum(o.wrong_way for o in wrong)
-    print(f"\nmode {mode}: named or localised {helped}/{len(wrong)}, wrong way {misled}")
+    print(f"\n{which} mode {mode}: named or localised {helped}/{len(wrong)}, wrong way {misled}")
     assert helped >= NAMED_OR_LOCALISED * len(wrong), (helped, len(wrong))
-    assert misled <= WRONG_WAY_CEILING, misled
+    assert misled <= BATCH_FIXTURES[which], misled
