@@ -11,6 +11,9 @@ MAX_LIGHTS = 8  # directional lights a view takes at once (uniform array sizes)
 GRAZING_DEG = 87.0  # plots leave out |θo| beyond this when they scale (Ward diverges there)
 PLOT_DECADES = 3.0  # range of the log scale of the polar plot and the 3D lobe
 LOOP_LIMIT = 10_000  # iterations a loop of a model may run per invocation (the loop guard)
+# Mesa's llvmpipe ends a loop after 65,535 passes per invocation without a word (a loop
+# inside another counts every pass): a guard limit above this would never speak.
+LOOP_LIMIT_MAX = 65_000
 SLIDER_STEPS = 1000  # positions of a parameter's slider (the app's and the page's)
 # Colours of models drawn together on the dark plots, in order: Okabe & Ito's colour-blind
 # safe set (black left out), each at 4:1 or more on the plots' grey (tests/test_a11y_colour.py).

@@ -56,6 +56,12 @@ def test_cosine_factor_grazing_and_channel_are_named():
     grazing = expected.copy()
     grazing[np.maximum(angles[:, 0], angles[:, 2]) > 70] *= 1.5
     assert "near grazing" in diagnosis.shape(check, angles, expected, grazing)
+    assert "Fresnel" in diagnosis.shape(check, angles, expected, grazing)
+    # A check that reads a table has no Fresnel or G term: its lookup of large angles is
+    # what differs there (exercise 12's θd in degrees was sent to Fresnel and G).
+    tabulated = Check("probe.x", "probe", 1.0, table=("a table",))
+    said = diagnosis.shape(tabulated, angles, expected, grazing)
+    assert "near grazing" in said and "θd" in said and "Fresnel" not in said
     red = expected.copy()
     red[:50, 0] *= 0.5
     assert "red channel" in diagnosis.shape(check, angles, expected, red)

@@ -296,3 +296,26 @@ def test_a_loop_that_never_ends_is_named_at_its_line(grader, tmp_path):
     P._TRUTHS.clear()  # measured anew, as for a first grade
     result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
     assert f"properties.glsl:{line}: the loop at line {line} did not end" in result.message
+
+
+def test_a_finer_grid_passes_and_a_stopped_loop_is_named_at_its_line(grader, tmp_path):
+    """The guard counts every pass of a nested loop: a correct rule on a finer grid than the
+    handout's (128 x 480 = 61,440 inner passes; 20,000 once stopped a 96-step rule) gets
+    full marks, and a loop the guard does stop is named at its line, not as values that
+    differ (the grader's own measurement used to render after the student's program; and
+    llvmpipe ends loops past 65,535 passes silently, so the limit stays under that)."""
+    path = tmp_path / EXERCISE.student_file
+    code = EXERCISE.solution.read_text(encoding="utf-8")
+    check = next(c for c in EXERCISE.checks if c.name == "phong")
+    finer = code.replace("N_THETA = 64;", "N_THETA = 128;").replace("N_PHI = 256;", "N_PHI = 480;")
+    path.write_text(finer, encoding="utf-8")
+    reading = prepare(EXERCISE, path)
+    assert grader.grade(EXERCISE, check, reading.model, reading.code, None).passed
+    endless = code.replace("N_PHI = 256;", "N_PHI = 1100;")  # 64 x 1,100 = 70,400
+    path.write_text(endless, encoding="utf-8")
+    reading = prepare(EXERCISE, path)
+    result = grader.grade(EXERCISE, check, reading.model, reading.code, None)
+    line = next(n for n, t in enumerate(endless.splitlines(), 1) if "j < N_PHI" in t)
+    assert not result.passed
+    assert f"properties.glsl:{line}: the loop at line {line} did not end within" in result.message
+    assert "every pass of the loops around it" in result.message, result.message

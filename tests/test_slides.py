@@ -188,10 +188,9 @@ def test_pdf_waits_for_the_monte_carlo_demo_or_says_snapshot(deck, deck_page):
         page.evaluate(
             "document.querySelectorAll('iframe.ibl-demo').forEach(f => f.src = f.dataset.src)"
         )
-        page.wait_for_function(  # the frames compile at once: slow on a busy CI machine
-            "[...document.querySelectorAll('iframe.ibl-demo')].every(f => f.contentWindow"
-            " && f.contentWindow.iblDemo && f.contentWindow.iblDemo.panels.length)", timeout=120_000
-        )
+        frames = "[...document.querySelectorAll('iframe.ibl-demo')].map(f => f.contentWindow)"
+        ready = f"{frames}.every(w => w && w.iblDemo && w.iblDemo.panels.length)"
+        page.wait_for_function(ready, timeout=120_000)  # they compile at once: slow under load
         _wait_for_convergence(page, 0.2)  # far too short for 2048 samples
         (samples, target), *_ = page.evaluate(IBL_PROGRESS)
         notes = page.eval_on_selector_all("p.snapshot", "ps => ps.map(p => p.textContent)")

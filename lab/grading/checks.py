@@ -318,7 +318,8 @@ class Grader:
             return failed(
                 check,
                 f"{file}:{line}: the loop at line {line} did not end within "
-                f"{model.loop_limit:,} iterations at {where}; check its exit condition "
+                f"{model.loop_limit:,} iterations at {where} (counted over every pass of "
+                "the loops around it); check its exit condition, or take fewer steps "
                 "(on a GPU such a loop freezes the screen)",
                 loop_line=line,
             )

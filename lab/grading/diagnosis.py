@@ -123,7 +123,7 @@ def shape(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarra
     for phrase in (
         _ratio(check, angles, expected, got),
         _one_channel(check, expected, got, wrong),
-        _grazing(angles, wrong, zero),
+        _grazing(angles, wrong, zero, table=bool(check.table)),
     ):
         if phrase:
             return phrase
@@ -174,12 +174,13 @@ def _one_channel(check: Check, expected: np.ndarray, got: np.ndarray, wrong: np.
     return ""
 
 
-def _grazing(angles: np.ndarray, wrong: np.ndarray, zero: np.ndarray) -> str:
-    """Wrong only where light or view is near grazing, right everywhere else."""
+def _grazing(angles: np.ndarray, wrong: np.ndarray, zero: np.ndarray, table: bool) -> str:
+    """Wrong only where light or view is near grazing, right everywhere else. A check that
+    reads a table has no Fresnel or G term to blame: there the lookup of large angles is."""
     steep = np.maximum(angles[:, 0], angles[:, 2]) > GRAZING
     elsewhere = ~steep & ~zero
     if elsewhere.sum() >= 8 and not wrong[elsewhere].any() and wrong[steep].any():
-        return WORDS["grazing"].format(grazing=GRAZING)
+        return WORDS["grazing_table" if table else "grazing"].format(grazing=GRAZING)
     return ""
 
 

@@ -12,7 +12,7 @@ import sys
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from lab.constants import LOOP_LIMIT
+from lab.constants import LOOP_LIMIT, LOOP_LIMIT_MAX
 from lab.glsl import SAMPLER_LINE_BASE, guard_loops, label_of
 from lab.grading import headers, kinds, schema
 from lab.grading.scope import check_names, exercise_names
@@ -148,10 +148,11 @@ def load_exercise(folder: str | Path) -> Exercise:
         estimator=bool(spec.get("estimator", False)),
         api=[str(name) for name in spec.get("api", DEFAULT_API)],
     )
-    if exercise.loop_limit < 1:
+    if not 1 <= exercise.loop_limit <= LOOP_LIMIT_MAX:
         raise ExerciseError(
             f"{where}:{lines.line('', 0, 'loop_limit')}: loop_limit must be a positive number "
-            "of iterations"
+            f"of iterations, at most {LOOP_LIMIT_MAX:,} (Mesa's llvmpipe ends longer loops "
+            "silently, before the guard could say so)"
         )
     if exercise.estimator:
         _check_estimator(exercise, spec, where, lines)

@@ -194,6 +194,7 @@ class Explainer(TraceEvidence):
         self._matched: dict[tuple[Path, str], str | None] = {}
         self._shown: dict[tuple[Path, str], dict[str, np.ndarray]] = {}
         self._traces: dict = {}  # programs traced (lab.grading.evidence)
+        self._elsewhere: dict[tuple, np.ndarray] = {}  # the program at other checks' settings
 
     def variants(self, exercise: Exercise) -> list[mistakes.Variant]:
         """Known mistakes and single-edit mutants of the solution (hidden mode renders
@@ -232,6 +233,29 @@ class Explainer(TraceEvidence):
             solution = self._solution_code[exercise.solution]
             self._models[cached] = _variant_model(exercise, variant, solution)
         return self._models[cached]
+
+    def elsewhere(self, exercise: Exercise, check: Check, model: Model, key: str) -> bool:
+        """Does the program agree with variant `key` at the committed settings of the other
+        checks of this kind where the variant fails? One subject can make two mistakes give
+        the same values (a cosine of V where cos θL belongs and f(V, L) on a model with the
+        cosine inside): a variant the program matches on that check alone is not its
+        mistake. Kinds whose renders are cheap opt in (`confirm_elsewhere`)."""
+        kind, stored = kind_of(check), self.stored(exercise)
+        for other in exercise.checks:
+            theirs = stored.get(f"{other.name}|{key}")
+            if other.name == check.name or kind_of(other) is not kind or theirs is None:
+                continue
+            want = self.grader.expected(exercise, other, live=False)
+            if want is None or kind.live_same(other, theirs, want):
+                continue  # the variant passes there: that check cannot tell
+            memo = (exercise.references, other.name, model.code)
+            if memo not in self._elsewhere:
+                if len(self._elsewhere) >= 256:
+                    self._elsewhere.clear()
+                self._elsewhere[memo] = kind.live_values(self.grader.renderer, model, other)
+            if kind.nearest(other, self._elsewhere[memo], want, {key: theirs}) != key:
+                return False
+        return True
 
     def live(self, exercise: Exercise, check: Check, model: Model, got, expected) -> str | None:
         """Hidden mode: the variants the references kept that are plausible (see
@@ -344,6 +368,11 @@ class Explainer(TraceEvidence):
         else:
             candidates = {k: v for k, v in self.candidates(exercise, check).items() if k in hints}
             key = kind.nearest(check, got, expected, candidates)
+        if key is not None and kind.confirm_elsewhere:
+            try:
+                key = key if self.elsewhere(exercise, check, model, key) else None
+            except (ShaderCompileError, ModelError, OSError, KeyError):
+                key = None
         try:
             located = self.locate(exercise, check, model, reading)
         except Exception:  # noqa: BLE001 - the stored hints stand without the trace

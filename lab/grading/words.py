@@ -58,6 +58,11 @@ DIAGNOSIS = {
         "the values are right except near grazing (θ above {grazing:g}°) — check the "
         "terms that matter there: Fresnel, G and the N·L·N·V denominator"
     ),
+    "grazing_table": (
+        "the values are right except near grazing (θ above {grazing:g}°) — check what "
+        "the lookup does with the large angles there: the difference angle θd's bins "
+        "(radians over π/2) and the clamp at the table's last bin"
+    ),
     "peak_fit": (
         "the lobe peaks at θo = {got:.0f}° instead of {want:.0f}°, as it does with {what} "
         "of about {value:g} instead of {actual:g}"

@@ -111,14 +111,16 @@ def cites(hint: str, line: int, text: str) -> bool:
 
 
 def unquoted(hint: str, source: list[str]) -> str:
-    """`hint` without the student's own code it quotes in backticks: a quoted line
-    localises, but its identifiers do not name anything."""
+    """`hint` without the student's own code it quotes in backticks and without file
+    paths: a quoted line localises, but its identifiers do not name anything."""
     code = " ".join(" ".join(source).split())
 
     def drop(match: re.Match) -> str:
         text = " ".join(match.group(1).split())
         return "`…`" if len(text) >= QUOTE_MIN and text in code else match.group(0)
 
+    # Nor does the path of the file (a temporary folder's random letters: "kd", "cos").
+    hint = re.sub(r"(?:[A-Za-z]:)?(?:[/\\][^\s/\\:`()]+)+\.glsl", "FILE", hint)
     return re.sub(r"`([^`]*)`", drop, hint)
 
 
@@ -200,6 +202,27 @@ def summary(cases: list[Case], outcomes: dict, mode: int | None) -> list[str]:
         out.append(
             f"  {case.label}: {outcome.score:g}/{outcome.max_score:g} ({', '.join(outcome.failed)})"
         )
+    return out
+
+
+def per_exercise(cases: list[Case], outcomes: dict, modes: list[int | None]) -> list[str]:
+    """Per exercise and mode: wrong cases losing points / named or localised / pointing the
+    wrong way, and correct rewrites losing points."""
+    out = [
+        "per exercise, each mode: wrong lose points / named or localised / wrong way; "
+        "correct rewrites losing points"
+    ]
+    for name in sorted({c.exercise for c in cases}):
+        mine = [c for c in cases if c.exercise == name]
+        cells = []
+        for mode in modes:
+            got = [outcomes[c.file, mode] for c in mine if not c.correct]
+            lost = sum(o.lost for o in got)
+            helped = sum(o.lost and (o.named or o.localised) for o in got)
+            misled = sum(o.lost and o.wrong_way for o in got)
+            right = sum(outcomes[c.file, mode].lost for c in mine if c.correct)
+            cells.append(f"{lost}/{len(got)} {helped} {misled}; {right}")
+        out.append(f"  {name[:24]:24s} " + " | ".join(f"{c:>14s}" for c in cells))
     return out
 
 
@@ -301,6 +324,8 @@ def main(argv: list[str] | None = None) -> int:
     ]
     if args.verbose:
         lines += details(cases, outcomes, modes)
+    lines.append("")
+    lines += per_exercise(cases, outcomes, modes)
     lines.append("")
     for mode in modes:
         lines += summary(cases, outcomes, mode)

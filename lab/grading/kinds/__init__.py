@@ -236,6 +236,7 @@ class CheckKind:
 
     # -- hidden mode: likely wrong programs rendered now, at the check's random settings ----
     by_program = False  # live values describe the program, not this check (one match each)
+    confirm_elsewhere = False  # a match must hold at the other checks' settings (cheap renders)
 
     def live_values(self, renderer: Renderer, model: Model, check: Check) -> np.ndarray:
         """What hidden mode compares of a likely wrong program and the student's, rendered

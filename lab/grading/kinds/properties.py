@@ -113,6 +113,7 @@ def reciprocity_truth(renderer, target: Model, params: dict, pairs: np.ndarray) 
 
 class PropertiesKind(CheckKind):
     name = "properties"
+    confirm_elsewhere = True  # a few pixels per render: one subject can make mistakes agree
     order = 60
     purpose_of = ""  # its rows and frame are drawn from `seed`
     fields = {"target": "", "albedo_rows": 6, "grazing_rows": 2}
@@ -174,9 +175,10 @@ class PropertiesKind(CheckKind):
 
         target = target_model(check.options["target"])
         program = linked(model, target)
-        rows = self.rows(check)
-        # The measurement first: the grader reads the loop guard of the last render.
+        # The measurement first: the loop guard's flag is read from the last view rendered,
+        # which must be the student's (a loop it stopped is named, not values "differ").
         truth = self.truth(renderer, target, check)
+        rows = self.rows(check)
         X, Y, N = self.frame(check)
         width = min(len(rows), 1024)
         height = -(-len(rows) // width)

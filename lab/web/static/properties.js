@@ -160,6 +160,22 @@ function explainValues(check, got, truth) {
   return "";
 }
 
+/** Does the program agree with stored mistake `key` at every other properties check where
+ * that mistake fails (Explainer.elsewhere)? One subject can make two mistakes agree. */
+function agreesElsewhere(r, key, results) {
+  return results.every((o) => {
+    const theirs = o.check.stored?.candidates?.[key];
+    if (o === r || o.check.kind !== "properties" || !o.got || !theirs) return true;
+    const n = o.got.length;
+    const [values, truth] = [theirs.slice(0, n), theirs.slice(n)];
+    const mine = verdicts(o.check, values, truth);
+    const real = verdicts(o.check, truth, truth);
+    const fails = off(o.check, values, truth).some(Boolean) || mine[0] !== real[0] || mine[1] !== real[1];
+    if (!fails) return true; // the mistake passes there: that check cannot tell
+    return matches(o.check, o.got, { [key]: theirs }).length > 0;
+  });
+}
+
 /** The grader's "Likely: ..." for each failed properties check of `results` (one run of
  * every check of the exercise), from the stored mistakes (committed mode), added to its
  * message: nearest(), or explain() when no stored mistake matches. */
@@ -176,7 +192,8 @@ export function diagnoseProperties(exercise, results) {
     const best = Math.min(...list.map((m) => m.off));
     const close = list.filter((m) => m.off <= best + NOISE);
     close.sort((a, b) => count(b.key) - count(a.key) || a.off - b.off);
-    const likely = sentence(close.length ? hints[close[0].key] : explainValues(r.check, r.got, r.truth));
+    const key = close.length && agreesElsewhere(r, close[0].key, results) ? close[0].key : null;
+    const likely = sentence(key ? hints[key] : explainValues(r.check, r.got, r.truth));
     if (likely) r.message += `. ${likely}`;
   }
 }
