@@ -1,4 +1,4 @@
-"""The batch runner shared by tests/exercise_11..14/measure.py: one exercise's wrong and
+"""The batch runner shared by tests/exercise_11..15/measure.py: one exercise's wrong and
 correct submissions graded in reference mode and at hidden seed 1, score and diagnosis per
 file (the figures of each folder's BEFORE.txt and AFTER.txt).
 
