@@ -260,7 +260,8 @@ class SHKind(CheckKind):
             factor = float(np.median(ratio))
             # every value, the lab's zeros too, is the lab's times that factor
             close = np.abs(mine - factor * truth) <= 2.0 * tol * max(1.0, abs(factor))
-            if abs(factor - 1.0) > 0.01 and close.all():
+            # a factor near 0 is values that are all but zero (a stub's): no factor to name
+            if abs(factor - 1.0) > 0.01 and abs(factor) > 0.01 and close.all():
                 return WORDS["scaled"].format(factor=factor)
         return ""
 
