@@ -47,6 +47,8 @@ def diagnosis_entry(check, stored: dict, hints: dict) -> dict:
         name = key[len(prefix) :]
         if name.startswith("term."):
             terms[name[len("term.") :]] = _packed(value[..., :3])
+        elif name in hints and check.kind == "sh":  # its values alone: row 1 is the truth
+            candidates[name] = _packed(kind_of(check).shipped(check, value, 0))
         elif name in hints:
             candidates[name] = _packed(value)
     return {"candidates": candidates, "terms": terms}
