@@ -58,6 +58,17 @@ def grade(submission: Path, tmp_path: Path) -> dict[str, tuple[bool, str]]:
     return {t["name"].split(".", 1)[1]: (t["status"] == "passed", t["output"]) for t in tests}
 
 
+NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+
+
+def same_words(mine: str, theirs: str, rtol: float = 0.01) -> bool:
+    """The same text, and the same numbers within `rtol`."""
+    if NUMBER.sub("#", mine) != NUMBER.sub("#", theirs):
+        return False
+    pairs = zip(NUMBER.findall(mine), NUMBER.findall(theirs), strict=True)
+    return all(abs(float(a) - float(b)) <= rtol * abs(float(b)) for a, b in pairs)
+
+
 def files(tmp_path: Path) -> dict[str, Path]:
     """The solution, the stub, each stored mistake (applied to the solution) and each
     correct rewrite, by label."""
@@ -104,7 +115,7 @@ def test_practice_gives_the_graders_verdicts(page, tmp_path, output_dir):
     assert page.evaluate("brdfLab.exercises.exercise.grader_only") == []
     found = files(tmp_path)
     assert len(found) >= 2 + 12 + 3
-    differ, same_words, agree, times = [], 0, 0, {}
+    differ, words, agree, times = [], [], 0, {}
     for label, path in found.items():
         theirs = grade(path, tmp_path)
         mine, times[label] = practice(page, path.read_text(encoding="utf-8"))
@@ -114,8 +125,12 @@ def test_practice_gives_the_graders_verdicts(page, tmp_path, output_dir):
                 differ.append(f"{label} {name}: page {message!r}, grader {theirs[name][1]!r}")
             else:
                 agree += 1
+            # the first sentence (how many values are off, which, the lobe's distance) read
+            # as the grader's, its numbers within 1 %: a wrong file's own values come from
+            # another GPU (the page counts 2162 rows off where llvmpipe counts 2160)
             first = re.split(r"\. |\n", theirs[name][1])[0]
-            same_words += message.startswith(first)
+            if not same_words(re.split(r"\. |\n", message)[0], first):
+                words.append(f"{label} {name}: page {message!r}, grader {first!r}")
         score = sum(points[n] for n, (p, _) in mine.items() if p)
         assert score == sum(points[n] for n, (p, _) in theirs.items() if p) or differ, label
         if label.startswith(("solution", "correct")):
@@ -123,12 +138,24 @@ def test_practice_gives_the_graders_verdicts(page, tmp_path, output_dir):
         else:
             assert score < sum(points.values()), label
     counts = {"files": len(found), "verdicts_agree": agree, "verdicts_differ": len(differ),
-              "first_sentence_same": same_words, "checks": len(found) * len(points),
+              "first_sentence_differs": words, "checks": len(found) * len(points),
               "seconds": times}  # fmt: skip
     (output_dir / "web_sh_verdicts.json").write_text(json.dumps(counts, indent=1))
     assert not differ, "\n".join(differ)
-    assert same_words == agree, counts
+    assert not words, "\n".join(words)
     assert page.errors == []
+
+
+def rerun(page) -> float:
+    """The page's milliseconds to run the five checks again on the same text (programs
+    compiled), diagnosis and all."""
+    return page.evaluate(
+        """() => {
+          const start = performance.now();
+          brdfLab.exercises.run();
+          return performance.now() - start;
+        }"""
+    )
 
 
 def test_practice_form_is_accessible(page, output_dir):
@@ -139,9 +166,14 @@ def test_practice_form_is_accessible(page, output_dir):
     shown, _ = practice(page, text)
     assert all(passed for passed, _ in shown.values()), shown
     assert violations(page) == []
+    solution_ms = rerun(page)
     stub = (ROOT / "exercises" / NAME / "sh_projection.glsl").read_text(encoding="utf-8")
     shown, _ = practice(page, stub)
     assert not any(passed for passed, _ in shown.values()), shown
     assert violations(page) == []
     page.locator("#exercise").screenshot(path=output_dir / "web_practice_sh.png")
+    stub_ms = rerun(page)
+    assert max(solution_ms, stub_ms) < 5000, (solution_ms, stub_ms)
+    (output_dir / "web_sh_run.json").write_text(json.dumps({"solution_ms": solution_ms,
+                                                            "stub_ms": stub_ms}))  # fmt: skip
     assert page.errors == []

@@ -275,18 +275,18 @@ class SHKind(CheckKind):
         return {
             "options": {**check.options, "target": check.options["target"] or LINKED_FOR_BASIS},
             "directions": rows[::count, 2:].tolist(),  # degrees, theta and phi
-            # (n, 3) flat; a basis check's channels are one value (vec3(sh_basis)): one kept
-            "truth": self.shipped(check, values[check.name]).round(7).tolist(),
+            # (n, 3) flat, float32's shortest digits (1e-14 stays); a basis check's one channel
+            "truth": [float(str(v)) for v in self.shipped(check, values[check.name], 1, True)],
             "linked_with": {"name": check.options["target"] or LINKED_FOR_BASIS},
             "prototype": PROTOTYPE,
             "project": self.projects(check),
             "words": WORDS,  # lab/grading/words.py: the page fills the same sentences
         }
 
-    def shipped(self, check: Check, raw: np.ndarray, row: int = 1) -> np.ndarray:
+    def shipped(self, check: Check, raw: np.ndarray, row: int = 1, single=False) -> np.ndarray:
         """Row `row` of stored values as the page reads them, flat: a basis check's channels
         are one value (the view writes vec3(sh_basis)), so its first channel alone."""
-        values = np.asarray(raw, np.float64)[row]
+        values = np.asarray(raw, np.float32 if single else np.float64)[row]
         return (values if self.projects(check) else values[:, :1]).ravel()
 
     # -- report --------------------------------------------------------------------------
