@@ -12,6 +12,7 @@ import { floatTexture } from "./assemble.js";
 import { defaults, fill } from "./header.js";
 import { sentence } from "./diagnosis.js";
 import { fromTarget, linkedModel } from "./properties.js";
+import { el } from "./dom.js";
 
 const VIEW = "grade_sh";
 const RAD = Math.PI / 180;
@@ -199,4 +200,30 @@ export function runSh(panel, check, submission = panel.model) {
   rows.forEach((_, k) => { for (let c = 0; c < n; c++) got[n * k + c] = out[4 * k + c]; });
   const truth = check.truth;
   return { ...compareSh(check, got, truth), got, truth }; // diagnosed by diagnoseSh
+}
+
+const SHOWN = 12; // SHKind.SHOWN: rows in the report's table, the failing ones first
+const largest = (check, values, k) => Math.max(...Array.from({ length: channels(check) }, (_, c) => at(check, values, k, c)));
+
+/** The grader's report table of a failed check (figures()): a few rows, yours beside the
+ * lab's (largest channel), each marked in words (not colour alone), in a labelled region of
+ * its own that scrolls (by keyboard too) on a narrow screen. */
+export function shFigure({ check, got, truth, off: wrong }) {
+  const failing = wrong.flatMap((bad, k) => (bad ? [k] : []));
+  const shown = (failing.length ? failing : [...wrong.keys()]).slice(0, SHOWN);
+  const g4 = (x) => fill("{x:.4g}", { x });
+  const rows = shown.map((k) => {
+    const [l, m, theta, phi] = shRows(check)[k];
+    return [fill("({l}, {m}) at ({theta:.1f}°, {phi:.1f}°)", { l, m, theta, phi }), g4(largest(check, got, k)),
+      g4(largest(check, truth, k)), wrong[k] ? "✗ differs" : "✓"];
+  });
+  const more = failing.length > shown.length ? ` (${failing.length - shown.length} more rows differ)` : "";
+  const cells = (tag, texts, extra = {}) => texts.map((t) => el(tag, extra, t));
+  const name = check.name;
+  return el("figure", { class: "exercise-table", "data-check": name },
+    el("div", { class: "scroll", tabindex: "0", role: "region", "aria-label": `${name}: your values and the lab's` },
+      el("table", {}, el("thead", {}, el("tr", {}, ...cells("th", ["(l, m) at (θ, φ)", "yours", "lab's",
+        "within tolerance"], { scope: "col" }))),
+      el("tbody", {}, ...rows.map((row) => el("tr", {}, ...cells("td", row)))))),
+    el("figcaption", {}, `${name}: your values beside the lab's (largest channel)${more}`));
 }
