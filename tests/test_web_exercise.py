@@ -297,8 +297,6 @@ def test_every_solution_passes_in_the_page_one_exercise_after_another(page):
     for exercise in find_exercises(ROOT / "exercises"):
         if exercise.sampler_for:
             continue  # its checks run on request (test_sampling_checks_give_...)
-        if {c.kind for c in exercise.checks} == {"sh"}:
-            continue  # 15's harmonics: the sh kind has no practice on the page, grader only
         shown = practice(page, exercise.name, exercise.solution.read_text(encoding="utf-8"))
         assert shown and all(passed for passed, _ in shown.values()), (exercise.name, shown)
     assert page.evaluate("brdfLab.state.panels.length") <= 2

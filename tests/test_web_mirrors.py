@@ -310,7 +310,7 @@ def fill_cases() -> list:
     from lab.grading import words
 
     cases = []
-    templates = [*words.DIAGNOSIS.values(), *words.SAMPLING.values()]
+    templates = [*words.DIAGNOSIS.values(), *words.SAMPLING.values(), *words.SH.values()]
     for k, template in enumerate(templates):
         fields = [(name, spec) for _, name, spec, _ in Formatter().parse(template) if name]
         numbers = FILL_NUMBERS[k % 7 :] + FILL_NUMBERS
@@ -319,7 +319,7 @@ def fill_cases() -> list:
             for i, (name, spec) in enumerate(fields)
         }
         cases.append((template, values))
-    specs = "{x:.0f}|{x:.1f}|{x:.2f}|{x:+.1f}|{x:.4f}|{x:g}|{x:.3g}|{x:.2g}"
+    specs = "{x:.0f}|{x:.1f}|{x:.2f}|{x:+.1f}|{x:.4f}|{x:g}|{x:.3g}|{x:.2g}|{x:.2%}|{x:.1%}"
     cases += [(specs, {"x": x}) for x in FILL_NUMBERS if x not in (0.125, 0.375)]
     cases += [("{x:.0f}|{x:.1f}|{x:.2f}", {"x": x}) for x in (0.125, 0.375)]
     # JSON has no NaN or infinity: those travel as {"float": "nan"} (check_mirrors.mjs).
@@ -337,7 +337,7 @@ def python_number(value):
 
 
 def test_sentences_are_filled_as_python_formats_them(javascript):
-    """header.js fill() (the diagnosis' and sampling checks' sentences in practice mode)
+    """header.js fill() (the diagnosis', sampling and sh checks' sentences in practice mode)
     writes what Python's str.format writes for every template of lab/grading/words.py."""
     cases, _, js = javascript
     assert len(cases["fill"]) > 60

@@ -7,8 +7,9 @@ points and the stub come from exercise.toml. The page renders the student's file
 and compares as the probe, polar and sphere kinds do, runs a sampler's chi-square and pdf
 integral checks (static/sampling.js) and IBL render checks (static/iblcheck.js), and links
 exercise 11's tests with their models (static/properties.js), draws exercise 13's textured
-object with the check's textures (static/objectcheck.js) and makes exercise 12's tables on
-its GPU (static/tables.js); a kind it cannot run (its
+object with the check's textures (static/objectcheck.js), makes exercise 12's tables on
+its GPU (static/tables.js) and runs exercise 15's harmonics against the lab's values
+(static/shcheck.js); a kind it cannot run (its
 `practice` gives None) is listed as the grader's alone.
 """
 
@@ -47,6 +48,8 @@ def diagnosis_entry(check, stored: dict, hints: dict) -> dict:
         name = key[len(prefix) :]
         if name.startswith("term."):
             terms[name[len("term.") :]] = _packed(value[..., :3])
+        elif name in hints and check.kind == "sh":  # its values alone: row 1 is the truth
+            candidates[name] = _packed(kind_of(check).shipped(check, value, 0))
         elif name in hints:
             candidates[name] = _packed(value)
     return {"candidates": candidates, "terms": terms}

@@ -25,7 +25,7 @@ import html
 import numpy as np
 
 from lab.grading.kinds import CheckKind
-from lab.grading.kinds.properties import _from_target, linked, target_model
+from lab.grading.kinds.properties import PROTOTYPE, _from_target, linked, target_model
 from lab.grading.result import CheckResult, failed, passed
 from lab.grading.spec import Check, ExerciseError
 from lab.grading.words import SH as WORDS
@@ -264,6 +264,31 @@ class SHKind(CheckKind):
             if abs(factor - 1.0) > 0.01 and abs(factor) > 0.01 and close.all():
                 return WORDS["scaled"].format(factor=factor)
         return ""
+
+    # -- the page ------------------------------------------------------------------------
+    def practice(self, exercise, check: Check, values) -> dict:
+        """What the page's shcheck.js needs to run the check as this kind does: the
+        directions (the page repeats every (l, m) up to the order at each, as `_rows`), the
+        model linked after the file, and the lab's values (the committed reference's second
+        row: the page never projects, so its verdicts follow from the same numbers)."""
+        rows = self.rows(check)
+        count = (int(check.options["order"]) + 1) ** 2
+        return {
+            "options": {**check.options, "target": check.options["target"] or LINKED_FOR_BASIS},
+            "directions": rows[::count, 2:].tolist(),  # degrees, theta and phi
+            # (n, 3) flat, float32's shortest digits (1e-14 stays); a basis check's one channel
+            "truth": [float(str(v)) for v in self.shipped(check, values[check.name], 1, True)],
+            "linked_with": {"name": check.options["target"] or LINKED_FOR_BASIS},
+            "prototype": PROTOTYPE,
+            "project": self.projects(check),
+            "words": WORDS,  # lab/grading/words.py: the page fills the same sentences
+        }
+
+    def shipped(self, check: Check, raw: np.ndarray, row: int = 1, single=False) -> np.ndarray:
+        """Row `row` of stored values as the page reads them, flat: a basis check's channels
+        are one value (the view writes vec3(sh_basis)), so its first channel alone."""
+        values = np.asarray(raw, np.float32 if single else np.float64)[row]
+        return (values if self.projects(check) else values[:, :1]).ravel()
 
     # -- report --------------------------------------------------------------------------
     SHOWN = 12  # rows in the report's table: the failing ones first

@@ -228,6 +228,9 @@ function addInclude(source, relative, seen, model, files) {
 // practice mode): some GPUs' built-ins are coarse (SwiftShader's about 1e-4), which 06's Blinn
 // exponent ln 2 / -ln cos(beta) turns into errors of up to 8 %, and the grader's llvmpipe is
 // exact, so the page would fail a right answer. Taylor series after reduction to [0, pi/2].
+// SwiftShader's atan(y, x) also gives 0 for y = -0.0 and x < 0 (IEEE's atan2 and llvmpipe:
+// -pi), which turns exercise 15's harmonics with odd m at phi = 180 degrees around: that one
+// case is answered as IEEE answers it, the rest is the built-in.
 const EXACT_TRIG = `vec2 lab_exact_trig(float angle) {
     float wrapped = mod(angle + 3.14159265, 6.28318531) - 3.14159265;
     float t = abs(wrapped);
@@ -248,8 +251,19 @@ float lab_exact_sin(float a) { return lab_exact_trig(a).y; }
 vec2 lab_exact_sin(vec2 a) { return vec2(lab_exact_sin(a.x), lab_exact_sin(a.y)); }
 vec3 lab_exact_sin(vec3 a) { return vec3(lab_exact_sin(a.xy), lab_exact_sin(a.z)); }
 vec4 lab_exact_sin(vec4 a) { return vec4(lab_exact_sin(a.xy), lab_exact_sin(a.zw)); }
+float lab_exact_atan(float y, float x) {
+    return x < 0.0 && y == 0.0 ? (1.0 / y < 0.0 ? -3.14159265 : 3.14159265) : atan(y, x);
+}
+vec2 lab_exact_atan(vec2 y, vec2 x) { return vec2(lab_exact_atan(y.x, x.x), lab_exact_atan(y.y, x.y)); }
+vec3 lab_exact_atan(vec3 y, vec3 x) { return vec3(lab_exact_atan(y.xy, x.xy), lab_exact_atan(y.z, x.z)); }
+vec4 lab_exact_atan(vec4 y, vec4 x) { return vec4(lab_exact_atan(y.xy, x.xy), lab_exact_atan(y.zw, x.zw)); }
+float lab_exact_atan(float a) { return atan(a); }
+vec2 lab_exact_atan(vec2 a) { return atan(a); }
+vec3 lab_exact_atan(vec3 a) { return atan(a); }
+vec4 lab_exact_atan(vec4 a) { return atan(a); }
 #define cos(a) lab_exact_cos(a)
-#define sin(a) lab_exact_sin(a)`;
+#define sin(a) lab_exact_sin(a)
+#define atan lab_exact_atan`;
 
 /**
  * The fragment shader for `model` in `view`. `files` maps paths under shaders/

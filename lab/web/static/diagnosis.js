@@ -304,8 +304,8 @@ export async function prepare(exercise) {
     const stored = { candidates: {}, terms: {} };
     for (const [key, text] of Object.entries(check.diagnosis.candidates)) {
       const data = await inflate(text, image ? Uint8Array : Float32Array);
-      // A sampling or properties check's values stay as the grader stores them (flat).
-      const flat = image || ["chi_square", "pdf_integral", "ibl_render", "properties"].includes(check.kind);
+      // A sampling, properties or sh check's values stay as the grader stores them (flat).
+      const flat = image || ["chi_square", "pdf_integral", "ibl_render", "properties", "sh"].includes(check.kind);
       stored.candidates[key] = flat ? data : rows(data, check.count);
     }
     for (const [name, text] of Object.entries(check.diagnosis.terms)) {

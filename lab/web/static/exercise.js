@@ -16,6 +16,7 @@ import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
 import { objectInputs, prepareObject, unreadTextures } from "./objectcheck.js";
 import { Tables } from "./tables.js";
+import { diagnoseSh, runSh, shFigure } from "./shcheck.js";
 
 const fromBase64 = (text, Type) => {
   const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
@@ -214,9 +215,9 @@ function checkValues(model, params) {
 
 /** Runs one check on the panel (its model is the submission); {passed, message, ...}. */
 export function runCheck(panel, check, submission = panel.model) {
-  if (check.kind === "properties") {
-    // The student's tests linked with the check's model, judged and diagnosed (properties.js).
-    const result = runProperties(panel, check, submission);
+  if (check.kind === "properties" || check.kind === "sh") {
+    // The student's file linked with the check's model, judged and diagnosed (properties.js, shcheck.js).
+    const result = (check.kind === "sh" ? runSh : runProperties)(panel, check, submission);
     return result.loop ? loopFailure(check, panel, result.loop) : result;
   }
   const saved = panel.values;
@@ -363,6 +364,7 @@ export class ExerciseMode {
       }
     });
     diagnoseProperties(exercise, this.results); // across its checks
+    diagnoseSh(exercise, this.results);
     this.runs++;
     this.show();
     return this.results;
@@ -446,9 +448,10 @@ export class ExerciseMode {
       })));
       if (r.note) pictures.push(el("p", { class: "practice-note", "data-check": r.check.name }, r.note));
     }
-    // A failed properties check's values beside the grader's, as its report's table.
+    // A failed properties or sh check's values beside the grader's, as its report's table.
     for (const r of this.results) {
       if (r.check.kind === "properties" && !r.passed && r.got) pictures.push(valuesFigure(r));
+      if (r.check.kind === "sh" && !r.passed && r.got) pictures.push(shFigure(r)); // shcheck.js
     }
     // The checks only the grader runs, named with their points and why.
     const others = exercise.grader_only || [];

@@ -94,10 +94,11 @@ export function fill(template, values) {
     if (!(name in values)) throw new Error(`fill: no value for {${name}} in "${template}"`);
     const value = values[name];
     if (spec === undefined) return String(value);
-    const parts = /^(\+?)(?:\.(\d+))?([fg])$/.exec(spec);
+    const parts = /^(\+?)(?:\.(\d+))?([fg%])$/.exec(spec);
     if (!parts) throw new Error(`fill: the format spec "${spec}" of "${template}" is not one the page knows`);
     const digits = parts[2] === undefined ? 6 : Number(parts[2]);
-    const text = parts[3] === "f" ? formatFixed(value, digits) : formatDigits(value, Math.max(digits, 1));
+    const text = parts[3] === "%" ? `${formatFixed(100 * value, digits)}%`
+      : parts[3] === "f" ? formatFixed(value, digits) : formatDigits(value, Math.max(digits, 1));
     return parts[1] && !text.startsWith("-") ? `+${text}` : text;
   });
 }

@@ -40,7 +40,7 @@ export function linkedModel(check, submission, models) {
 }
 
 /** Compile errors past the student's last line belong to the target's file (_from_target). */
-function fromTarget(err, linked) {
+export function fromTarget(err, linked) {
   if (!err.errors) return err;
   for (const e of err.errors) {
     if (e.file === linked.path && e.line > linked.studentLines) {
