@@ -143,7 +143,8 @@ function explainValues(check, got, truth) {
     const h = ratios.length >> 1;
     const factor = ratios.length % 2 ? ratios[h] : (ratios[h - 1] + ratios[h]) / 2; // np.median
     const close = mine.every((x, i) => Math.abs(x - factor * truth[i]) <= 2 * tol[i] * Math.max(1, Math.abs(factor)));
-    if (Math.abs(factor - 1) > 0.01 && close) return fill(W.scaled, { factor });
+    // a factor near 0 is values that are all but zero (a stub's): no factor to name
+    if (Math.abs(factor - 1) > 0.01 && Math.abs(factor) > 0.01 && close) return fill(W.scaled, { factor });
   }
   return "";
 }
