@@ -63,6 +63,12 @@ DIAGNOSIS = {
         "the lookup does with the large angles there: the difference angle θd's bins "
         "(radians over π/2) and the clamp at the table's last bin"
     ),
+    "seam": (
+        "the values are right except where φd crosses the table's end (within half a bin "
+        "of 0° or 180°) — φd is periodic, not clamped: the neighbour of the last bin is "
+        "bin 0 and the one below bin 0 is the last, so wrap the index around (modulo the "
+        "bin count) instead of clamping it or leaving it outside the table"
+    ),
     "peak_fit": (
         "the lobe peaks at θo = {got:.0f}° instead of {want:.0f}°, as it does with {what} "
         "of about {value:g} instead of {actual:g}"
