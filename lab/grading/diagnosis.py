@@ -180,7 +180,8 @@ def seam_rows(check: Check, angles: np.ndarray) -> np.ndarray | None:
     and the first's, 180° apart, are neighbours): within half a bin of either end of φd.
     None where the check reads no table. Angles in degrees (θi, φi, θo, φo), N = z."""
     specs = getattr(check, "table", ())
-    if not specs:
+    dims = getattr(specs[0], "dims", None) if specs else None
+    if dims is None:
         return None
     from lab import reference
     from lab.measured.merl import continuous_index, half_diff
@@ -188,7 +189,6 @@ def seam_rows(check: Check, angles: np.ndarray) -> np.ndarray | None:
     theta = np.radians(np.asarray(angles, dtype=np.float64))
     L = reference.direction(theta[:, 0], theta[:, 1])
     V = reference.direction(theta[:, 2], theta[:, 3])
-    dims = specs[0].dims
     phi = continuous_index(*half_diff(L, V), dims)[2]
     return (phi < 0.5) | (phi > dims[2] - 0.5)
 
