@@ -193,6 +193,17 @@ PROPERTIES = {
         "f(L, V) and f(V, L) the difference is at most 1"
     ),
     "negative_albedo": "your directional_albedo is negative at some views: f_r cos θL is not",
+    "reduced": "your {what} returns {reduction}",
+    "reduction": (
+        "{said}, where the largest channel belongs, max(r, g, b): a model conserves energy, "
+        "and is reciprocal, only where every colour channel does, so the worst one decides"
+    ),
+    "by_smallest": "the smallest channel, min(r, g, b)",
+    "by_mean": "the mean of the channels",
+    "by_red": "the red channel alone",
+    "by_green": "the green channel alone",
+    "by_blue": "the blue channel alone",
+    "by_luminance": "the luminance of the channels",
     "albedo_at": "directional_albedo at θV = {theta:.1f}°",
     "pair_at": (
         "reciprocity_error at (θL, φL, θV, φV) = ({tl:.1f}°, {pl:.1f}°, {tv:.1f}°, {pv:.1f}°)"
