@@ -354,8 +354,10 @@ class PropertiesKind(CheckKind):
             if (np.nan_to_num(mine[:n]) < -1e-6).any():
                 return WORDS["negative_albedo"]
             target = target_model(check.options["target"])
-            channels = self.channels(explainer.grader.renderer, target, check)
-            return reduction(check, n, mine, channels)
+            channels = _TRUTHS.get(self._key(target, check))  # the render has just made it
+            if channels is None and explainer is not None:
+                channels = self.channels(explainer.grader.renderer, target, check)
+            return "" if channels is None else reduction(check, n, mine, channels)
         return WORDS["constant"].format(said="; ".join(said))
 
     # -- report --------------------------------------------------------------------------
