@@ -181,8 +181,8 @@ def seam_rows(check: Check, angles: np.ndarray) -> np.ndarray | None:
     None where the check reads no table. Angles in degrees (θi, φi, θo, φo), N = z."""
     specs = getattr(check, "table", ())
     dims = getattr(specs[0], "dims", None) if specs else None
-    if dims is None:
-        return None
+    if dims is None or angles is None or np.ndim(angles) != 2 or np.shape(angles)[1] != 4:
+        return None  # no table, or a check without rows of directions (a sphere's image)
     from lab import reference
     from lab.measured.merl import continuous_index, half_diff
 
