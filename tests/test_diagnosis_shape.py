@@ -102,6 +102,37 @@ def coloured_case() -> tuple[Check, np.ndarray, np.ndarray]:
     return Check("probe.x", "probe", 1.0), angles, expected
 
 
+def seam_case() -> tuple[Check, np.ndarray, np.ndarray, np.ndarray]:
+    """A check reading a (small) table, rows of which some lie across φd's seam, values."""
+    from lab.grading.tables import TableSpec
+
+    check = Check("bins.x", "bin_edges", 1.0, table=(TableSpec("ggx", dims=(8, 8, 16)),))
+    angles = probe_rows(400)
+    seam = diagnosis.seam_rows(check, angles)
+    expected = np.random.default_rng(1).uniform(0.1, 2.0, (len(angles), 3))
+    return check, angles, expected, seam
+
+
+def test_a_lookup_wrong_only_across_the_periodic_seam_is_named():
+    """Values off only within half a bin of φd's ends (a clamp where it should wrap, at
+    either end, however written) are named; off elsewhere too, or without a table, not."""
+    check, angles, expected, seam = seam_case()
+    assert 8 <= seam.sum() < len(seam) - 8  # both kinds of row are there
+    for end in (seam, seam & (np.arange(len(seam)) % 2 == 0)):  # all of them, or some
+        got = expected.copy()
+        got[end] *= 1.3
+        assert "φd is periodic" in diagnosis.shape(check, angles, expected, got)
+    got = expected.copy()
+    got[seam] *= 1.3
+    got[np.flatnonzero(~seam)[:3]] *= 0.7  # wrong elsewhere as well: no seam
+    assert "periodic" not in diagnosis.shape(check, angles, expected, got)
+    plain = Check("probe.x", "probe", 1.0)
+    got = expected.copy()
+    got[seam] *= 1.3
+    assert "periodic" not in diagnosis.shape(plain, angles, expected, got)
+    assert diagnosis.seam_rows(Check("p", "probe", 1.0, table=("a table",)), angles) is None
+
+
 def test_a_term_that_is_zero_is_called_missing_not_grey():
     """0 is grey in every channel, but a specular term that is 0 everywhere (never added)
     is no float used for a colour: it is named as a part that is missing."""
@@ -141,6 +172,11 @@ def test_the_pages_shape_says_what_the_graders_says(tmp_path):
         "scaled cosine": expected * 1.5 * np.cos(np.radians(angles[:, 0]))[:, None],
     }
     python = {k: diagnosis.shape(check, angles, expected, v) for k, v in cases.items()}
+    # Across a table's periodic seam: the page reads the seam's rows as exercises.json sends.
+    table, rows, table_expected, seam = seam_case()
+    across = table_expected.copy()
+    across[seam] *= 1.3
+    python["seam"] = diagnosis.shape(table, rows, table_expected, across)
     # The terms' sentence, with one, two and three names (', ' and ' and ' as the grader's).
     terms = [(["D"], [], ""), (["D", "G"], ["diffuse"], "x"), (["D", "G", "F"], ["a", "b"], "")]
     python["terms"] = [diagnosis.terms_sentence(*t) for t in terms]
@@ -151,6 +187,17 @@ def test_the_pages_shape_says_what_the_graders_says(tmp_path):
         "cases": {k: np.nan_to_num(v, nan=-7e300).tolist() for k, v in cases.items()},
         "terms": terms,
         "rules": diagnosis_rules(),  # the words and thresholds, as exercises.json sends them
+        "seam": {
+            "check": {
+                "atol": table.atol,
+                "rtol": table.rtol,
+                "table": [{"model": "ggx"}],
+                "diagnosis": {"seam": np.flatnonzero(seam).tolist()},
+            },
+            "angles": rows.tolist(),
+            "expected": table_expected.tolist(),
+            "got": across.tolist(),
+        },
     }
     (tmp_path / "data.json").write_text(json.dumps(data))
     module = (Path(__file__).resolve().parent.parent / "lab/web/static/diagnosis.js").as_uri()
@@ -165,8 +212,10 @@ def test_the_pages_shape_says_what_the_graders_says(tmp_path):
         "out[k] = shape(d.check, d.angles, d.expected, "
         "got.map((r) => r.map((x) => (x === -7e300 ? NaN : x))));\n"
         "out.terms = d.terms.map((t) => termsSentence(...t));\n"
+        "out.seam = shape(d.seam.check, d.seam.angles, d.seam.expected, d.seam.got);\n"
         "console.log(JSON.stringify(out));\n"
     )
     run = subprocess.run(["node", str(script)], capture_output=True, text=True, check=True)
     assert json.loads(run.stdout) == python
     assert python["zero"].startswith("it is 0 everywhere")
+    assert "φd is periodic" in python["seam"]

@@ -43,19 +43,20 @@ def grader() -> Grader:
 
 def test_the_graders_measurement_matches_closed_forms(grader):
     """Lambert's albedo is its albedo at every view; Lambert with the cosine inside has
-    albedo 2 kd / 3 and reciprocity error |cos L − cos V| / max(cos L, cos V)."""
+    albedo 2 kd / 3 and reciprocity error |cos L − cos V| / max(cos L, cos V): per channel."""
     renderer = grader.renderer
     views = np.array([[0.0, 0.0], [40.0, 30.0], [75.0, 200.0], [88.0, 10.0]])
     lambert = P.target_model("lambert")
     got = P.albedo_truth(renderer, lambert, {"albedo": (0.8, 0.5, 0.2)}, views)
-    np.testing.assert_allclose(got, 0.8, atol=2e-3)
+    np.testing.assert_allclose(got, np.tile([0.8, 0.5, 0.2], (len(views), 1)), atol=2e-3)
     inside = P.target_model(str(EXERCISE.folder / "subjects" / "cosine_inside.glsl"))
     got = P.albedo_truth(renderer, inside, {"kd": (0.9, 0.3, 0.3)}, views)
-    np.testing.assert_allclose(got, 0.6, atol=2e-3)
+    np.testing.assert_allclose(got, np.tile([0.6, 0.2, 0.2], (len(views), 1)), atol=2e-3)
     pairs = np.array([[20.0, 0.0, 60.0, 90.0], [70.0, 10.0, 10.0, 300.0], [30.0, 5.0, 30.0, 50.0]])
     err = P.reciprocity_truth(renderer, inside, {"kd": (0.9, 0.3, 0.3)}, pairs)
     cl, cv = np.cos(np.radians(pairs[:, 0])), np.cos(np.radians(pairs[:, 2]))
-    np.testing.assert_allclose(err, np.abs(cl - cv) / np.maximum(cl, cv), atol=1e-5)
+    want = np.abs(cl - cv) / np.maximum(cl, cv)
+    np.testing.assert_allclose(err, np.repeat(want[:, None], 3, axis=1), atol=1e-5)
 
 
 def test_the_measurement_matches_the_numpy_oracle_for_a_reciprocal_model(grader):
@@ -67,7 +68,7 @@ def test_the_measurement_matches_the_numpy_oracle_for_a_reciprocal_model(grader)
     got = P.albedo_truth(grader.renderer, P.target_model("phong"), params, views)
     for (theta, _), value in zip(views, got, strict=True):
         want = reference.directional_albedo("phong", params, float(theta))
-        assert value == pytest.approx(float(np.max(want)), rel=3e-3), theta
+        assert value == pytest.approx(np.asarray(want, float), rel=3e-3), theta
 
 
 def _scores(grader, files: dict[str, Path], seed: int | None) -> dict[str, tuple[float, list]]:
@@ -281,6 +282,19 @@ def test_values_the_definitions_rule_out_are_named(grader):
     assert "negative at some pairs" in said(np.concatenate([truth[:n], -truth[n:]]))
     assert "above 1" in said(np.concatenate([truth[:n], 3.0 * truth[n:] + 0.5]))
     assert "albedo is negative" in said(np.concatenate([-truth[:n], truth[n:]]))
+    # The channels reduced otherwise than by the largest, whatever the code: named by which.
+    per = kind.channels(grader.renderer, target, check)
+    mean = said(np.concatenate([per[:n].mean(axis=1), truth[n:]]))
+    assert "directional_albedo returns the mean of the channels" in mean
+    assert "reciprocity_error" not in mean and "largest channel" in mean
+    assert said(np.concatenate([1.5 * truth[:n], truth[n:]])) == ""  # a factor is none
+    # A model whose channels break reciprocity unequally (cosine_inside's do alike).
+    check = next(c for c in EXERCISE.checks if c.name == "phong_illumination")
+    per = kind.channels(grader.renderer, P.target_model(check.options["target"]), check)
+    top = per.max(axis=1)
+    mine = np.concatenate([top[:n], per[n:].min(axis=1)])
+    smallest = kind.explain(None, EXERCISE, check, None, None, np.stack([mine, top]), False)
+    assert "reciprocity_error returns the smallest channel" in smallest
 
 
 def test_a_loop_that_never_ends_is_named_at_its_line(grader, tmp_path):

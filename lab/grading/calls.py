@@ -122,3 +122,24 @@ def downstream(fault: Point, points: list[Point], good: dict[int, bool], limit: 
                     nxt.append(c)
         frontier = nxt
     return sorted(order, key=lambda p: (p.line, p.start))[:limit]
+
+
+def into_callee(fault: Point, faults: list[Point], points: list[Point], order) -> Point:
+    """Where a faulty call's cause lies: a call of the student's own function whose arguments
+    agree with the solution (`fault`, a fault only by its result) is followed into that
+    function, to its first faulty value (`order` ranks faults as locate does), helper into
+    helper; a value inside the helper that departs on its own is the slip, not the call.
+    In a loop the values are its last pass's, where a helper's result may happen to agree
+    (a Gaussian's tail is 0 either way): there the helpers called on the fault's line are
+    followed too, when a value inside one of them departs from the solution's."""
+    seen = {fault.slot}
+    while True:
+        heads = {fault.head} if _is_call(fault) else set()
+        if fault.loop is not None:
+            heads |= {p.head for p in points if p.line == fault.line and _is_call(p)}
+        heads.discard(fault.function)  # a recursion GLSL forbids anyway
+        inner = [p for p in faults if p.function in heads and p.slot not in seen]
+        if not inner:
+            return fault
+        fault = min(inner, key=order)
+        seen.add(fault.slot)

@@ -124,6 +124,7 @@ def shape(check: Check, angles: np.ndarray, expected: np.ndarray, got: np.ndarra
         _ratio(check, angles, expected, got),
         _one_channel(check, expected, got, wrong),
         _grazing(angles, wrong, zero, table=bool(check.table)),
+        _seam(check, angles, wrong, zero),
     ):
         if phrase:
             return phrase
@@ -171,6 +172,37 @@ def _one_channel(check: Check, expected: np.ndarray, got: np.ndarray, wrong: np.
     channels = per_channel.any(axis=0)
     if channels.sum() == 1:
         return WORDS["one_channel"].format(channel=CHANNELS[int(np.argmax(channels))])
+    return ""
+
+
+def seam_rows(check: Check, angles: np.ndarray) -> np.ndarray | None:
+    """Rows whose lookup blends across the table's periodic axis (φd: its last bin's centre
+    and the first's, 180° apart, are neighbours): within half a bin of either end of φd.
+    None where the check reads no table. Angles in degrees (θi, φi, θo, φo), N = z."""
+    specs = getattr(check, "table", ())
+    dims = getattr(specs[0], "dims", None) if specs else None
+    if dims is None or angles is None or np.ndim(angles) != 2 or np.shape(angles)[1] != 4:
+        return None  # no table, or a check without rows of directions (a sphere's image)
+    from lab import reference
+    from lab.measured.merl import continuous_index, half_diff
+
+    theta = np.radians(np.asarray(angles, dtype=np.float64))
+    L = reference.direction(theta[:, 0], theta[:, 1])
+    V = reference.direction(theta[:, 2], theta[:, 3])
+    phi = continuous_index(*half_diff(L, V), dims)[2]
+    return (phi < 0.5) | (phi > dims[2] - 0.5)
+
+
+def _seam(check: Check, angles: np.ndarray, wrong: np.ndarray, zero: np.ndarray) -> str:
+    """Wrong only where a table lookup blends across its periodic axis's ends (the wrap of
+    φd), right everywhere else: the neighbour there is clamped (or left outside the table)
+    where it should wrap around. Any code that does so shows it, however it is written."""
+    seam = seam_rows(check, angles)
+    if seam is None:
+        return ""
+    elsewhere = ~seam & ~zero
+    if elsewhere.sum() >= 8 and not wrong[elsewhere].any() and wrong[seam].any():
+        return WORDS["seam"]
     return ""
 
 

@@ -150,7 +150,11 @@ def locate(student: Trace, solution: Trace) -> Finding | None:
     ]
     if not faults:
         return None
-    fault = min(faults, key=lambda p: (student.step(p.slot), p.line, p.start))
+
+    def order(p: Point) -> tuple:
+        return (student.step(p.slot), p.line, p.start)
+
+    fault = calls.into_callee(min(faults, key=order), faults, points, order)
     by_slot = {p.slot: p for p in points}
     # a * b * c is parsed (a * b) * c: a partial product the solution never forms is no
     # fault of its own, the whole chain is judged.

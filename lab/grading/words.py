@@ -63,6 +63,12 @@ DIAGNOSIS = {
         "the lookup does with the large angles there: the difference angle θd's bins "
         "(radians over π/2) and the clamp at the table's last bin"
     ),
+    "seam": (
+        "the values are right except where φd crosses the table's end (within half a bin "
+        "of 0° or 180°) — φd is periodic, not clamped: the neighbour of the last bin is "
+        "bin 0 and the one below bin 0 is the last, so wrap the index around (modulo the "
+        "bin count) instead of clamping it or leaving it outside the table"
+    ),
     "peak_fit": (
         "the lobe peaks at θo = {got:.0f}° instead of {want:.0f}°, as it does with {what} "
         "of about {value:g} instead of {actual:g}"
@@ -187,6 +193,17 @@ PROPERTIES = {
         "f(L, V) and f(V, L) the difference is at most 1"
     ),
     "negative_albedo": "your directional_albedo is negative at some views: f_r cos θL is not",
+    "reduced": "your {what} returns {reduction}",
+    "reduction": (
+        "{said}, where the largest channel belongs, max(r, g, b): a model conserves energy, "
+        "and is reciprocal, only where every colour channel does, so the worst one decides"
+    ),
+    "by_smallest": "the smallest channel, min(r, g, b)",
+    "by_mean": "the mean of the channels",
+    "by_red": "the red channel alone",
+    "by_green": "the green channel alone",
+    "by_blue": "the blue channel alone",
+    "by_luminance": "the luminance of the channels",
     "albedo_at": "directional_albedo at θV = {theta:.1f}°",
     "pair_at": (
         "reciprocity_error at (θL, φL, θV, φV) = ({tl:.1f}°, {pl:.1f}°, {tv:.1f}°, {pv:.1f}°)"

@@ -66,6 +66,9 @@ def check_entry(exercise: Exercise, check, values, stored=None, hints=None) -> d
     entry["lights"] = [[lt.theta, lt.phi, list(lt.rgb)] for lt in check.lights]
     entry["params"] = {k: list(v) if isinstance(v, tuple) else v for k, v in check.params.items()}
     entry["diagnosis"] = diagnosis_entry(check, stored or {}, hints or {})
+    seam = diagnosis.seam_rows(check, kind.angles(check)) if check.table else None
+    if seam is not None:  # the rows across the table's periodic seam (diagnosis._seam)
+        entry["diagnosis"]["seam"] = np.flatnonzero(seam).tolist()
     if check.kind == "polar":  # the lobe's angle in the plot (negative: the light's side)
         angles = kind.angles(check)
         theta = np.where(angles[:, 3] == check.phi_i % 360.0, -angles[:, 2], angles[:, 2])

@@ -42,6 +42,17 @@ SPREAD = 78.0  # the other albedo rows are stratified over [0, SPREAD] degrees
 RECIPROCAL = 0.01  # a reciprocity error above this says "not reciprocal"
 TRUTH_U, TRUTH_PSI = 256, 128  # the grader's albedo quadrature (per row: 32,768 directions)
 _TRUTHS: dict[tuple, np.ndarray] = {}  # measurements by target, parameters and rows
+CHANNELS = "|channels"  # values.npz: a check's measurement per channel, under name + this
+# How a test may reduce its colour channels to one number, besides the largest (the right
+# one: energy is conserved, reciprocity holds, only where every channel passes).
+REDUCTIONS = {
+    "smallest": lambda c: c.min(axis=1),
+    "mean": lambda c: c.mean(axis=1),
+    "red": lambda c: c[:, 0],
+    "green": lambda c: c[:, 1],
+    "blue": lambda c: c[:, 2],
+    "luminance": lambda c: c @ np.array([0.2126, 0.7152, 0.0722]),
+}
 
 
 @functools.lru_cache(maxsize=32)
@@ -77,9 +88,10 @@ def _from_target(err: ShaderCompileError, student: Model, target: Model) -> Shad
 
 
 def albedo_truth(renderer, target: Model, params: dict, views: np.ndarray) -> np.ndarray:
-    """max over channels of the integral of f(L, V) cos(theta_L) over the upper hemisphere,
-    for each view (theta_V, phi_V) in degrees: directions L around the mirror direction of V
-    at angle t = pi u^2 (u and the azimuth psi on midpoint grids; Jacobian sin t 2 pi u)."""
+    """(views, 3): per colour channel, the integral of f(L, V) cos(theta_L) over the upper
+    hemisphere, for each view (theta_V, phi_V) in degrees: directions L around the mirror
+    direction of V at angle t = pi u^2 (u and the azimuth psi on midpoint grids; Jacobian
+    sin t 2 pi u)."""
     u = (np.arange(TRUTH_U) + 0.5) / TRUTH_U
     psi = (np.arange(TRUTH_PSI) + 0.5) * (2.0 * np.pi / TRUTH_PSI)
     t = np.pi * u * u
@@ -99,16 +111,15 @@ def albedo_truth(renderer, target: Model, params: dict, views: np.ndarray) -> np
         ws.append(np.repeat(weight, TRUTH_PSI))
     L, V, w = np.concatenate(Ls), np.concatenate(Vs), np.concatenate(ws)
     f = renderer.probe(target, params, L, V).astype(np.float64)
-    per = (f * (np.maximum(L[:, 2], 0.0) * w)[:, None]).reshape(len(views), -1, 3).sum(axis=1)
-    return per.max(axis=1)
+    return (f * (np.maximum(L[:, 2], 0.0) * w)[:, None]).reshape(len(views), -1, 3).sum(axis=1)
 
 
 def reciprocity_truth(renderer, target: Model, params: dict, pairs: np.ndarray) -> np.ndarray:
-    """max over channels of |f(L, V) - f(V, L)| / max(f(L, V), f(V, L), EPS) per pair."""
+    """(pairs, 3): per channel, |f(L, V) - f(V, L)| / max(f(L, V), f(V, L), EPS)."""
     both = np.concatenate([pairs, pairs[:, [2, 3, 0, 1]]])
     f = renderer.eval_angles(target, params, both).astype(np.float64).reshape(2, len(pairs), 3)
     top = np.maximum(np.maximum(f[0], f[1]), EPS)
-    return (np.abs(f[0] - f[1]) / top).max(axis=1)
+    return np.abs(f[0] - f[1]) / top
 
 
 class PropertiesKind(CheckKind):
@@ -199,10 +210,14 @@ class PropertiesKind(CheckKind):
         return np.stack([got, truth])
 
     def truth(self, renderer, target: Model, check: Check) -> np.ndarray:
-        """The grader's measurement at the check's rows, made once per setting and process
+        """The grader's measurement at the check's rows: each row's largest channel."""
+        return self.channels(renderer, target, check).max(axis=1)
+
+    def channels(self, renderer, target: Model, check: Check) -> np.ndarray:
+        """(rows, 3) the measurement per colour channel, made once per setting and process
         (the solution, the student's program and every likely mistake share it)."""
         rows, n = self.rows(check), self.albedo_count(check)
-        key = (str(target.path), target.code, repr(sorted(check.params.items())), rows.tobytes())
+        key = self._key(target, check)
         found = _TRUTHS.get(key)
         if found is None:
             albedo = albedo_truth(renderer, target, check.params, rows[:n, 2:])
@@ -211,6 +226,19 @@ class PropertiesKind(CheckKind):
                 _TRUTHS.clear()
             found = _TRUTHS[key] = np.concatenate([albedo, pairs])
         return found.copy()
+
+    def _key(self, target: Model, check: Check) -> tuple:
+        rows = self.rows(check)
+        return (str(target.path), target.code, repr(sorted(check.params.items())), rows.tobytes())
+
+    def save_reference(self, exercise, check: Check, reference: np.ndarray, values: dict):
+        """The reference, and the measurement per channel that rendering it made (the page
+        names a reduction of the channels other than the largest from it, as explain())."""
+        values[check.name] = reference
+        found = _TRUTHS.get(self._key(target_model(check.options["target"]), check))
+        if found is not None:
+            values[f"{check.name}{CHANNELS}"] = found.copy()
+        return []
 
     def stored(self, raw: np.ndarray, check: Check) -> np.ndarray:
         return np.asarray(raw, np.float64)
@@ -325,7 +353,11 @@ class PropertiesKind(CheckKind):
                 return WORDS["error_above_one"].format(value=errors.max())
             if (np.nan_to_num(mine[:n]) < -1e-6).any():
                 return WORDS["negative_albedo"]
-            return ""
+            target = target_model(check.options["target"])
+            channels = _TRUTHS.get(self._key(target, check))  # the render has just made it
+            if channels is None and explainer is not None:
+                channels = self.channels(explainer.grader.renderer, target, check)
+            return "" if channels is None else reduction(check, n, mine, channels)
         return WORDS["constant"].format(said="; ".join(said))
 
     # -- report --------------------------------------------------------------------------
@@ -390,11 +422,40 @@ class PropertiesKind(CheckKind):
             "rows": self.rows(check).tolist(),
             "frame": self.frame(check).tolist(),
             "truth": np.asarray(values[check.name], np.float64)[1].tolist(),
+            # per channel (explain's reductions); none in references made before it was kept
+            "channels": values[f"{check.name}{CHANNELS}"].tolist()
+            if f"{check.name}{CHANNELS}" in values
+            else None,
             "linked_with": linked_with,
             "prototype": PROTOTYPE,
             "reciprocal": RECIPROCAL,
             "words": WORDS,  # lab/grading/words.py: the page fills the same sentences
         }
+
+
+def reduction(check: Check, n: int, mine: np.ndarray, channels: np.ndarray) -> str:
+    """A test that reduces the colour channels to one number otherwise than by the largest
+    (the smallest, the mean, one channel, the luminance): its values are that reduction of
+    the grader's measurement per channel at every row of the part, and not the largest's.
+    Whatever code reduces so shows it: the values say which reduction, not the text."""
+    said = []
+    for what, part, per in (
+        ("directional_albedo", mine[:n], channels[:n]),
+        ("reciprocity_error", mine[n:], channels[n:]),
+    ):
+        if len(part) == 0 or not np.isfinite(part).all():
+            continue
+        largest = per.max(axis=1)
+        if (np.abs(part - largest) <= check.atol + check.rtol * np.abs(largest)).all():
+            continue
+        alike = [
+            WORDS[f"by_{name}"]
+            for name, reduce in REDUCTIONS.items()
+            if (np.abs(part - reduce(per)) <= check.atol + check.rtol * np.abs(reduce(per))).all()
+        ]  # at these rows two may agree (red may be the smallest channel): both are said
+        if alike:
+            said.append(WORDS["reduced"].format(what=what, reduction=" or ".join(alike)))
+    return WORDS["reduction"].format(said="; ".join(said)) if said else ""
 
 
 @functools.lru_cache(maxsize=256)

@@ -132,7 +132,7 @@ export function shape(check, angles, expected, got) {
     return say("zero", { where: say(nothing.every(Boolean) ? "zero_everywhere" : "zero_where_wrong") });
   }
   return ratioShape(check, angles, expected, got) || oneChannel(check, expected, got, wrong) ||
-    grazing(angles, wrong, zero);
+    grazing(angles, wrong, zero, Boolean(check.table?.length)) || seam(check, wrong, zero);
 }
 
 function std(values) {
@@ -188,13 +188,26 @@ function oneChannel(check, expected, got, wrong) {
   return "";
 }
 
-function grazing(angles, wrong, zero) {
+function grazing(angles, wrong, zero, table) {
   const limit = rules().grazing;
   const steep = angles.map((a) => Math.max(a[0], a[2]) > limit);
   const elsewhere = steep.map((s, i) => !s && !zero[i]);
   const nElsewhere = elsewhere.filter(Boolean).length;
   if (nElsewhere >= 8 && !wrong.some((w, i) => w && elsewhere[i]) && wrong.some((w, i) => w && steep[i])) {
-    return say("grazing", { grazing: limit });
+    return say(table ? "grazing_table" : "grazing", { grazing: limit });
+  }
+  return "";
+}
+
+/** diagnosis._seam: wrong only across a table's periodic seam (rows sent as "seam"). */
+function seam(check, wrong, zero) {
+  const rowsAt = check.diagnosis?.seam;
+  if (!rowsAt) return "";
+  const across = new Set(rowsAt);
+  const elsewhere = wrong.map((_, i) => !across.has(i) && !zero[i]);
+  if (elsewhere.filter(Boolean).length >= 8 && !wrong.some((w, i) => w && elsewhere[i]) &&
+    wrong.some((w, i) => w && across.has(i))) {
+    return say("seam");
   }
   return "";
 }

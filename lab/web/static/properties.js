@@ -157,7 +157,34 @@ function explainValues(check, got, truth) {
     return fill(W.error_above_one, { value: Math.max(...errors.map((e) => (e === Infinity ? Number.MAX_VALUE : e))) });
   }
   if (got.slice(0, n).map(finite).some((a) => a < -1e-6)) return W.negative_albedo;
-  return "";
+  return check.channels ? reduction(check, n, got, check.channels) : "";
+}
+
+// properties.REDUCTIONS: the ways a test may reduce its channels besides the largest.
+const REDUCTIONS = {
+  smallest: (c) => Math.min(...c),
+  mean: (c) => (c[0] + c[1] + c[2]) / 3,
+  red: (c) => c[0],
+  green: (c) => c[1],
+  blue: (c) => c[2],
+  luminance: (c) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2],
+};
+
+/** properties.reduction: a part whose values are another reduction of the grader's
+ * measurement per channel than the largest, at every row. */
+function reduction(check, n, got, channels) {
+  const W = check.words;
+  const near = (part, values) => part.every((x, k) => Math.abs(x - values[k]) <= check.atol + check.rtol * Math.abs(values[k]));
+  const said = [];
+  for (const [what, part, per] of [["directional_albedo", got.slice(0, n), channels.slice(0, n)],
+    ["reciprocity_error", got.slice(n), channels.slice(n)]]) {
+    if (!part.length || !part.every(Number.isFinite)) continue;
+    if (near(part, per.map((c) => Math.max(...c)))) continue;
+    const alike = Object.entries(REDUCTIONS).filter(([, reduce]) => near(part, per.map(reduce)))
+      .map(([name]) => W[`by_${name}`]);
+    if (alike.length) said.push(fill(W.reduced, { what, reduction: alike.join(" or ") }));
+  }
+  return said.length ? fill(W.reduction, { said: said.join("; ") }) : "";
 }
 
 /** Does the program agree with stored mistake `key` at every other properties check where
