@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lab.constants import LUMA
 from lab.glsl import CompileError, ShaderCompileError, label_of
 from lab.grading.kinds import CheckKind
 from lab.grading.result import CheckResult, failed, passed
@@ -51,7 +52,7 @@ REDUCTIONS = {
     "red": lambda c: c[:, 0],
     "green": lambda c: c[:, 1],
     "blue": lambda c: c[:, 2],
-    "luminance": lambda c: c @ np.array([0.2126, 0.7152, 0.0722]),
+    "luminance": lambda c: c @ np.array(LUMA),
 }
 
 
@@ -426,6 +427,7 @@ class PropertiesKind(CheckKind):
             "channels": values[f"{check.name}{CHANNELS}"].tolist()
             if f"{check.name}{CHANNELS}" in values
             else None,
+            "luma": LUMA,  # the luminance reduction's weights, written once (lab/constants.py)
             "linked_with": linked_with,
             "prototype": PROTOTYPE,
             "reciprocal": RECIPROCAL,

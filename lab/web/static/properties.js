@@ -160,14 +160,15 @@ function explainValues(check, got, truth) {
   return check.channels ? reduction(check, n, got, check.channels) : "";
 }
 
-// properties.REDUCTIONS: the ways a test may reduce its channels besides the largest.
+// properties.REDUCTIONS: the ways a test may reduce its channels besides the largest
+// (luminance with the check's `luma`, the lab's one copy of the weights).
 const REDUCTIONS = {
   smallest: (c) => Math.min(...c),
   mean: (c) => (c[0] + c[1] + c[2]) / 3,
   red: (c) => c[0],
   green: (c) => c[1],
   blue: (c) => c[2],
-  luminance: (c) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2],
+  luminance: (c, luma) => luma[0] * c[0] + luma[1] * c[1] + luma[2] * c[2],
 };
 
 /** properties.reduction: a part whose values are another reduction of the grader's
@@ -180,7 +181,7 @@ function reduction(check, n, got, channels) {
     ["reciprocity_error", got.slice(n), channels.slice(n)]]) {
     if (!part.length || !part.every(Number.isFinite)) continue;
     if (near(part, per.map((c) => Math.max(...c)))) continue;
-    const alike = Object.entries(REDUCTIONS).filter(([, reduce]) => near(part, per.map(reduce)))
+    const alike = Object.entries(REDUCTIONS).filter(([, reduce]) => near(part, per.map((c) => reduce(c, check.luma))))
       .map(([name]) => W[`by_${name}`]);
     if (alike.length) said.push(fill(W.reduced, { what, reduction: alike.join(" or ") }));
   }
