@@ -20,12 +20,13 @@ ROOT = Path(__file__).resolve().parent.parent
 # A solution that is a BRDF (not a sampler, nor exercise 11's tests of a linked model, nor
 # exercise 13's textured blend of two: tests/test_exercise_13_svbrdf.py ties its ends to
 # the library's lambert and ward; nor exercise 12's lookup of a table the grader binds:
-# tests/test_exercise_12_tabulated.py ties it to the lab's measured model on that table).
+# tests/test_exercise_12_tabulated.py ties it to the lab's measured model on that table;
+# nor exercise 15's harmonics, held to lab/measured/sh.py by tests/test_exercise_15_sh.py).
 EXERCISES = [
     e
     for e in find_exercises(ROOT / "exercises")
     if not e.sampler_for
-    and {c.kind for c in e.checks} not in ({"properties"}, {"object"})
+    and {c.kind for c in e.checks} not in ({"properties"}, {"object"}, {"sh"})
     and not any(getattr(c, "table", ()) for c in e.checks)
 ]
 SAMPLERS = [e for e in find_exercises(ROOT / "exercises") if e.sampler_for and not e.estimator]
