@@ -147,8 +147,9 @@ function loopFailure(check, panel, where) {
   const line = panel.lastLoop.line;
   const file = panel.model.path.split("/").pop();
   return { passed: false, message: `${file}:${line}: the loop at line ${line} did not end within ` +
-    `${Number(panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where}; ` +
-    "check its exit condition (on a GPU such a loop freezes the screen)" };
+    `${Number(panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where} ` +
+    "(counted over every pass of the loops around it); check its exit condition, or take fewer steps " +
+    "(on a GPU such a loop freezes the screen)" };
 }
 
 /** stopped_where for a sphere pixel (x, y from the bottom, as read back). */
