@@ -43,6 +43,7 @@ from lab.grading.kinds.probe import probe_angles, special_angles
 from lab.grading.result import CheckResult, failed
 from lab.grading.spec import PURPOSES, ExerciseError, infer_purpose
 from lab.grading.submission import portability_warnings
+from lab.grading.words import DIAGNOSIS
 from lab.models import Model, ModelError
 from lab.render import Light, Renderer
 
@@ -315,14 +316,10 @@ class Grader:
             else:
                 file, line = wrapper_origin(exercise, code, label_of(model.path), line)
             where = stopped_where(check, x, y)
-            return failed(
-                check,
-                f"{file}:{line}: the loop at line {line} did not end within "
-                f"{model.loop_limit:,} iterations at {where} (counted over every pass of "
-                "the loops around it); check its exit condition, or take fewer steps "
-                "(on a GPU such a loop freezes the screen)",
-                loop_line=line,
+            said = DIAGNOSIS["loop_stopped"].format(
+                file=file, line=line, limit=f"{model.loop_limit:,}", where=where
             )
+            return failed(check, said, loop_line=line)
         result = self.compare(check, expected, raw)
         if not result.passed:
             result.diagnosis = self.diagnose(exercise, check, model, expected, raw, live, reading)

@@ -12,6 +12,12 @@ from __future__ import annotations
 # The diagnosis of values against the solution's (lab.grading.diagnosis, explain).
 DIAGNOSIS = {
     "likely": "Likely: {text}.",
+    # the grader's and the page's sentence for a loop the guard stopped ({limit}: "10,000")
+    "loop_stopped": (
+        "{file}:{line}: the loop at line {line} did not end within {limit} iterations at "
+        "{where} (counted over every pass of the loops around it); check its exit condition, "
+        "or take fewer steps (on a GPU such a loop freezes the screen)"
+    ),
     "not_finite": (
         "some values are NaN or infinite — a division by zero or the pow/sqrt of a "
         "negative number; guard them with max(..., EPS)"

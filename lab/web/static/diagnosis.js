@@ -25,6 +25,11 @@ const rules = () => {
 /** The sentence `key` of lab/grading/words.py DIAGNOSIS, filled as Python fills it. */
 const say = (key, values = {}) => fill(rules().words[key], values);
 
+/** The grader's sentence for a loop its guard stopped (words.py DIAGNOSIS loop_stopped). */
+export function loopStopped(file, line, limit, where) {
+  return say("loop_stopped", { file, line, limit: Number(limit).toLocaleString("en-US"), where });
+}
+
 /** 'D', 'D and G', 'diffuse, D and G' (words.joined). */
 const joined = (names) => (names.length === 1 ? names[0] : say("listed", { most: names.slice(0, -1).join(", "), last: names.at(-1) }));
 

@@ -10,7 +10,7 @@ import { topFirst } from "./viewkit.js";
 import { el } from "./dom.js";
 import { direction } from "./geometry.js";
 import { addPanel, removePanel } from "./panels.js";
-import { explain, prepare, rows, useRules } from "./diagnosis.js";
+import { explain, loopStopped, prepare, rows, useRules } from "./diagnosis.js";
 import { meanFlip } from "./flip.js";
 import { SAMPLED_KINDS, prepareSampled, runSampled } from "./sampling.js";
 import { diagnoseProperties, runProperties, valuesFigure } from "./properties.js";
@@ -146,10 +146,8 @@ function toneImage(raw, size) {
 function loopFailure(check, panel, where) {
   const line = panel.lastLoop.line;
   const file = panel.model.path.split("/").pop();
-  return { passed: false, message: `${file}:${line}: the loop at line ${line} did not end within ` +
-    `${Number(panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at ${where} ` +
-    "(counted over every pass of the loops around it); check its exit condition, or take fewer steps " +
-    "(on a GPU such a loop freezes the screen)" };
+  const limit = panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT;
+  return { passed: false, message: loopStopped(file, line, limit, where) };
 }
 
 /** stopped_where for a sphere pixel (x, y from the bottom, as read back). */
