@@ -113,28 +113,50 @@ def pdf(deck: Path, output: Path, browser=None, converge_s: float = 60.0) -> Pat
             "document.querySelectorAll('iframe.demo').forEach(f => {"
             " if (!f.src) f.src = f.dataset.src; })"
         )
-        page.wait_for_function(
-            "[...document.querySelectorAll('iframe.demo')].every(f => "
-            "f.contentWindow && f.contentWindow.brdfLab && "
-            "f.contentWindow.brdfLab.state.firstRenderMs !== null)",
-            timeout=60_000,
-        )
+        _wait_for_first_pictures(page, DEMOS_RENDERED)
         # The Monte Carlo demo: loaded too, and printed once it shows a first image.
         page.evaluate(
             "document.querySelectorAll('iframe.ibl-demo').forEach(f => {"
             " if (!f.src) f.src = f.dataset.src; })"
         )
-        page.wait_for_function(
-            "[...document.querySelectorAll('iframe.ibl-demo')].every(f => "
-            "f.contentWindow && f.contentWindow.iblDemo && "
-            "(f.contentWindow.iblDemo.state.firstRenderMs !== null || "
-            "f.contentWindow.iblDemo.state.error))",
-            timeout=60_000,
-        )
+        _wait_for_first_pictures(page, IBL_DEMOS_RENDERED)
         _wait_for_convergence(page, converge_s)
         page.pdf(path=str(output), width="1280px", height="800px", print_background=True)
         page.close()
     return output
+
+
+# Whether each demo of a kind has drawn its first picture (or, for Monte Carlo, failed).
+DEMOS_RENDERED = """() => [...document.querySelectorAll('iframe.demo')].map((f) =>
+  !!(f.contentWindow && f.contentWindow.brdfLab &&
+     f.contentWindow.brdfLab.state.firstRenderMs !== null))"""
+IBL_DEMOS_RENDERED = """() => [...document.querySelectorAll('iframe.ibl-demo')].map((f) =>
+  !!(f.contentWindow && f.contentWindow.iblDemo &&
+     (f.contentWindow.iblDemo.state.firstRenderMs !== null ||
+      f.contentWindow.iblDemo.state.error)))"""
+
+
+def _wait_for_first_pictures(page, rendered_js: str, stall_s: float = 120.0) -> None:
+    """Wait until every demo has drawn, for as long as they keep finishing.
+
+    All demos load at once and each compiles its programs at its first draw, so on a busy
+    machine without a GPU the whole set can take minutes; only a stall of `stall_s` with
+    no demo finishing is an error.
+    """
+    done = page.evaluate(rendered_js)
+    last_change = time.monotonic()
+    while not all(done):
+        page.wait_for_timeout(250)
+        now = page.evaluate(rendered_js)
+        if sum(now) > sum(done):
+            last_change = time.monotonic()
+        done = now
+        if time.monotonic() - last_change > stall_s:
+            missing = ", ".join(str(i + 1) for i, d in enumerate(done) if not d)
+            raise SlidesError(
+                f"demo(s) {missing} of {len(done)} drew nothing for {stall_s:.0f} s; "
+                "open the deck in a browser to see their errors"
+            )
 
 
 # Each Monte Carlo demo's samples per pixel (the fewest of its panels) and its target.
