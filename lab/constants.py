@@ -14,6 +14,13 @@ LOOP_LIMIT = 10_000  # iterations a loop of a model may run per invocation (the 
 # Mesa's llvmpipe ends a loop after 65,535 passes per invocation without a word (a loop
 # inside another counts every pass): a guard limit above this would never speak.
 LOOP_LIMIT_MAX = 65_000
+# What every view says of a loop the guard stopped (the page fills it with header.js fill();
+# {where}: "" or " at θo = 30° of the polar plot").
+LOOP_WARNING = (
+    "{file}:{line}: the loop at line {line} did not end within {limit} iterations{where}; "
+    "the lab stopped it, so the pictures are wrong: check its exit condition (on a GPU "
+    "without the lab's guard it would freeze the screen)"
+)
 SLIDER_STEPS = 1000  # positions of a parameter's slider (the app's and the page's)
 # Colours of models drawn together on the dark plots, in order: Okabe & Ito's colour-blind
 # safe set (black left out), each at 4:1 or more on the plots' grey (tests/test_a11y_colour.py).
@@ -28,6 +35,7 @@ def as_dict() -> dict[str, object]:
         "GRAZING_DEG": GRAZING_DEG,
         "PLOT_DECADES": PLOT_DECADES,
         "LOOP_LIMIT": LOOP_LIMIT,
+        "LOOP_WARNING": LOOP_WARNING,
         "SLIDER_STEPS": SLIDER_STEPS,
     }
 

@@ -11,7 +11,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lab.constants import glsl_defines
+from lab.constants import LOOP_WARNING, glsl_defines
 from lab.models import SHADER_DIR, Model, ModelError, Value
 
 TARGETS = ("330", "300es")
@@ -184,11 +184,9 @@ def guard_loops(code: str, counter: str = "lab_loop_", line_base: int = 0) -> tu
 
 
 def loop_warning(model: Model, line: int) -> str:
-    """The loop guard's message for the desktop lab and `watch`."""
-    return (
-        f"{label_of(model.path)}:{line}: the loop at line {line} did not end within "
-        f"{model.loop_limit:,} iterations and was stopped (on a GPU without the lab's guard "
-        "it would freeze the screen): check its exit condition"
+    """The loop guard's message for the desktop lab and `watch` (the page's too)."""
+    return LOOP_WARNING.format(
+        file=label_of(model.path), line=line, limit=f"{model.loop_limit:,}", where=""
     )
 
 

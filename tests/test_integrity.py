@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lab.constants import LOOP_WARNING
 from lab.grading.exercise import load_exercise
 from lab.grading.runner import Pool, Task
 from lab.grading.submission import SourceError, check_directives, logical_lines
@@ -381,7 +382,9 @@ def test_desktop_lab_warns_about_a_loop_the_guard_stopped(qtbot, window, tmp_pat
     path = tmp_path / "looping.glsl"
     path.write_text(head + brace + "\n    float s = 1.0; while (s > 0.0) { s += 1.0; }" + rest)
     assert window.open_file(path) is not None
-    assert f"looping.glsl:{line}: the loop at line {line} did not end" in window.error_text()
+    said = window.error_text()
+    assert f"looping.glsl:{line}: the loop at line {line} did not end" in said
+    assert LOOP_WARNING.split("{where}")[1] in said  # the page's sentence too
 
 
 def test_hidden_mode_names_seed_values_and_lights_and_reproduces(tmp_path):

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lab.constants import LOOP_WARNING
 from lab.models import SHADER_DIR, ModelError, load_model, parse_model
 from lab.web.browser import chromium_path
 
@@ -166,7 +167,9 @@ def test_loop_guard_warning_names_the_line(page):
     assert edit(page, "\n".join(lines) + "\n") == []
     warning = page.evaluate("brdfLab.loopWarning(0)")
     assert warning.startswith(f"shaders/brdfs/phong.glsl:{at + 2}: the loop at line {at + 2}")
-    assert "did not end within 10,000 iterations" in warning
+    assert "did not end within 10,000 iterations at θo = " in warning
+    # one sentence, the desktop's too: the template after {where} is the same
+    assert warning.endswith(LOOP_WARNING.split("{where}")[1])
     assert page.locator(".loop-warning").is_visible()
     edit(page, PHONG)
     assert page.evaluate("brdfLab.loopWarning(0)") == ""

@@ -2,7 +2,7 @@
 // here, on the panel's WebGL2 context) and the page's other views, each made by its page
 // module (views/NAME.js) on the same context. What the panel does not own (removing it,
 // opening the editor, moving the light) it asks the page for with DOM events (ask()).
-import { ModelError, defaults } from "./header.js";
+import { ModelError, defaults, fill } from "./header.js";
 import { direction, planeOfIncidence } from "./geometry.js";
 import { assembleFragment, floatTexture, startProgram, vertexSource } from "./assemble.js";
 import { showOnly } from "./deck.js";
@@ -201,9 +201,9 @@ export class Panel {
    * directions); its values are wrong there and on a GPU it would freeze the screen. */
   showLoop(stop) {
     this.loop = stop;
-    const text = stop ? `${this.model.path}:${stop.line}: the loop at line ${stop.line} did not end within ` +
-      `${Number(this.lab.constants.LOOP_LIMIT).toLocaleString("en-US")} iterations at θo = ${stop.x - 90}° of the polar plot; ` +
-      "the lab stopped it, so the pictures are wrong: check its exit condition (on a GPU such a loop freezes the screen)" : "";
+    const limit = Number(this.model.loopLimit ?? this.lab.constants.LOOP_LIMIT).toLocaleString("en-US");
+    const text = stop ? fill(this.lab.constants.LOOP_WARNING, { file: this.model.path, line: stop.line, limit,
+      where: ` at θo = ${stop.x - 90}° of the polar plot` }) : "";
     setText(this.loopBox, text);
     this.loopBox.hidden = !text;
   }
