@@ -429,3 +429,29 @@ def test_object_practice_names_a_stopped_loop_as_the_grader(page, tmp_path):
         assert not passed and "did not end within" in message and "of the object" in message
         assert shown[name] == (False, message.replace(str(path), SVBRDF_FILE)), name
     assert page.errors == []
+
+
+def test_sampled_check_names_a_stopped_loop_as_the_grader(page, tmp_path):
+    """A sampler whose loop never ends for a few of its samples: the sampled checks name
+    the line as the grader does (the sample differs: the page draws other numbers)."""
+    text = (ROOT / "solutions" / SAMPLER / SAMPLER_FILE).read_text(encoding="utf-8")
+    first = "    vec3 H = sample_half_vector(u, N, X, Y);"
+    text = text.replace(
+        first, "    float k = 0.0;\n    while (u.x < 0.001 && k >= 0.0) { k += 1.0; }\n" + first, 1
+    )
+    path = tmp_path / SAMPLER_FILE
+    path.write_text(text, encoding="utf-8")
+    graded = grade(SAMPLER, path, tmp_path)
+    name = next(n for n in graded if n.startswith("chi_square"))
+    practice(page, SAMPLER, text)
+    only = f"r.check.name === '{name}'"
+    page.evaluate(f"brdfLab.exercises.results.forEach(r => r.pending &&= {only})")
+    shown = page.evaluate(
+        f"brdfLab.exercises.runSampling().then(rs => rs.find(r => {only}))"
+        ".then(r => [r.passed, r.message])"
+    )
+    said = graded[name][1].replace(str(path), SAMPLER_FILE)
+    assert not graded[name][0] and "did not end within" in said
+    sample = re.compile(r"at sample \d+")
+    assert shown[0] is False and sample.sub("", shown[1]) == sample.sub("", said), (shown, said)
+    assert page.errors == []

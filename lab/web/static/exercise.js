@@ -387,11 +387,10 @@ export class ExerciseMode {
             "the bottom)") : out, { pending: false });
           continue;
         }
-        Object.assign(result, await runSampled(panel, result.check, this.exercise), { pending: false });
-        if (panel.lastLoop) {
-          Object.assign(result, { passed: false, message: `${this.exercise.student_file}:${panel.lastLoop.line}: ` +
-            "a loop did not end: the lab stopped it, so the samples are wrong; check its exit condition" });
-        }
+        const out = await runSampled(panel, result.check, this.exercise);
+        const limit = panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT;
+        Object.assign(result, out.loop ? { passed: false, message: loopStopped(this.exercise.student_file,
+          out.loop.line, limit, `sample ${out.loop.sample}`) } : out, { pending: false });
       } catch (err) {
         if (!err.errors && !(err instanceof ModelError)) throw err;
         Object.assign(result, { passed: false, pending: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` });

@@ -38,6 +38,14 @@ const CHUNK_ROWS = 256; // rows of one pdf pass (one render target size for all 
 const TAU = 2 * Math.PI;
 const mod = (a, n) => ((a % n) + n) % n; // Python's %
 
+/** A pass in which the loop guard stopped a loop of the student's code (its first texel). */
+class LoopStopped extends Error {
+  constructor(stop) {
+    super(`the loop at line ${stop.line} did not end`);
+    this.stop = stop;
+  }
+}
+
 /** A view of one value per texel: `inputs` are (n, 3) directions as flat arrays, bound to
  * units 0, 1, ...; returns the n RGBA results (row by row, as the grader reads them). */
 function texelPass(panel, view, inputs, uniforms, rows) {
@@ -50,7 +58,9 @@ function texelPass(panel, view, inputs, uniforms, rows) {
     return floatTexture(gl, WIDTH, height, padded);
   });
   try {
-    return panel.run(view, WIDTH, height, uniforms, { textures }).subarray(0, 4 * n);
+    const out = panel.run(view, WIDTH, height, uniforms, { textures }).subarray(0, 4 * n);
+    if (panel.lastLoop) throw new LoopStopped(panel.lastLoop); // the next pass would forget it
+    return out;
   } finally {
     textures.forEach((t) => gl.deleteTexture(t));
   }
@@ -452,8 +462,14 @@ function pdfIntegral(panel, check, exercise) {
 /** Loads what a check needs from the server before it runs: nothing for these kinds. */
 export async function prepareSampled(check) {}
 
-/** Runs a sampling check on the panel (its values already the check's). */
+/** Runs a sampling check on the panel (its values already the check's); `{ loop }` where
+ * the loop guard stopped a loop, with the sample it stopped at as the grader counts them. */
 export async function runSampled(panel, check, exercise) {
   useRules(check.rules);
-  return check.kind === "chi_square" ? chiSquare(panel, check, exercise) : pdfIntegral(panel, check, exercise);
+  try {
+    return await (check.kind === "chi_square" ? chiSquare(panel, check, exercise) : pdfIntegral(panel, check, exercise));
+  } catch (err) {
+    if (!(err instanceof LoopStopped)) throw err;
+    return { loop: { ...err.stop, sample: err.stop.y * WIDTH + err.stop.x } };
+  }
 }
