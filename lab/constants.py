@@ -11,15 +11,26 @@ MAX_LIGHTS = 8  # directional lights a view takes at once (uniform array sizes)
 GRAZING_DEG = 87.0  # plots leave out |θo| beyond this when they scale (Ward diverges there)
 PLOT_DECADES = 3.0  # range of the log scale of the polar plot and the 3D lobe
 LOOP_LIMIT = 10_000  # iterations a loop of a model may run per invocation (the loop guard)
-# Mesa's llvmpipe ends a loop after 65,535 passes per invocation without a word (a loop
-# inside another counts every pass): a guard limit above this would never speak.
+# Mesa's llvmpipe silently ends every loop of an invocation once all its loops together
+# have run 65,535 passes (each loop's every pass counts, nested ones too): the guard stops
+# one loop past its limit (at most LOOP_LIMIT_MAX) and all of them past LOOP_TOTAL passes
+# in all, above the one loop's so that a loop that never ends is named as such, and under
+# llvmpipe's with room for the views' own loops, which the guard does not count.
 LOOP_LIMIT_MAX = 65_000
+LOOP_TOTAL = 65_400
+LOOP_TOTAL_FLAG = 2_000_000  # added to the guard's line when the loops together ran out
 # What every view says of a loop the guard stopped (the page fills it with header.js fill();
 # {where}: "" or " at θo = 30° of the polar plot").
 LOOP_WARNING = (
     "{file}:{line}: the loop at line {line} did not end within {limit} iterations{where}; "
     "the lab stopped it, so the pictures are wrong: check its exit condition (on a GPU "
     "without the lab's guard it would freeze the screen)"
+)
+# ... and of loops that together reached LOOP_TOTAL passes ({total}).
+LOOP_TOTAL_WARNING = (
+    "{file}:{line}: the loops ran {total} passes in all by the loop at line {line}{where} "
+    "(every pass of every loop counts); the lab stopped them, as a software renderer such "
+    "as Mesa's llvmpipe does without a word, so the pictures are wrong: take fewer steps"
 )
 SLIDER_STEPS = 1000  # positions of a parameter's slider (the app's and the page's)
 # Colours of models drawn together on the dark plots, in order: Okabe & Ito's colour-blind
@@ -36,6 +47,9 @@ def as_dict() -> dict[str, object]:
         "PLOT_DECADES": PLOT_DECADES,
         "LOOP_LIMIT": LOOP_LIMIT,
         "LOOP_WARNING": LOOP_WARNING,
+        "LOOP_TOTAL": LOOP_TOTAL,
+        "LOOP_TOTAL_FLAG": LOOP_TOTAL_FLAG,
+        "LOOP_TOTAL_WARNING": LOOP_TOTAL_WARNING,
         "SLIDER_STEPS": SLIDER_STEPS,
     }
 

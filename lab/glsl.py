@@ -11,7 +11,13 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lab.constants import LOOP_WARNING, glsl_defines
+from lab.constants import (
+    LOOP_TOTAL,
+    LOOP_TOTAL_FLAG,
+    LOOP_TOTAL_WARNING,
+    LOOP_WARNING,
+    glsl_defines,
+)
 from lab.models import SHADER_DIR, Model, ModelError, Value
 
 TARGETS = ("330", "300es")
@@ -39,15 +45,20 @@ void main() {
 FORBIDDEN_DIRECTIVE = re.compile(r"^\s*#\s*(version|extension|include|line)\b")
 
 # The loop guard: every loop of a model counts its iterations (per shader invocation) and
-# stops past the bound, recording its line in lab_loop_line. Software rasterizers give up
-# silently after 65,535 iterations and a GPU freezes: the guard makes both say so.
+# stops past the bound, recording its line in lab_loop_line. A GPU freezes on a loop that
+# never ends, and Mesa's llvmpipe silently ends every loop once all of them together have
+# run 65,535 passes in one invocation: the guard also counts the passes of all loops and
+# stops them before that (its line then carries LOOP_TOTAL_FLAG), so both are named.
 LOOP_HEAD = re.compile(r"\b(for|while)\s*\(")
 COMMENTS = re.compile(r"//[^\n]*|/\*.*?(?:\*/|\Z)", re.S)
 LOOP_GUARD = """int lab_loop_line = 0;
+int lab_loop_total = 0;
 bool lab_loop_step(inout int count, int line) {
     count += 1;
-    if (count <= LAB_LOOP_LIMIT) return true;
-    if (lab_loop_line == 0) lab_loop_line = line;
+    lab_loop_total += 1;
+    if (count <= LAB_LOOP_LIMIT && lab_loop_total <= LAB_LOOP_TOTAL) return true;
+    bool together = count <= LAB_LOOP_LIMIT;
+    if (lab_loop_line == 0) lab_loop_line = together ? line + LAB_LOOP_TOTAL_FLAG : line;
     return false;
 }"""
 FLAG_OUTPUT = """#undef main
@@ -185,15 +196,31 @@ def guard_loops(code: str, counter: str = "lab_loop_", line_base: int = 0) -> tu
 
 def loop_warning(model: Model, line: int) -> str:
     """The loop guard's message for the desktop lab and `watch` (the page's too)."""
-    return LOOP_WARNING.format(
-        file=label_of(model.path), line=line, limit=f"{model.loop_limit:,}", where=""
+    line, together = loop_cause(line)
+    template = LOOP_TOTAL_WARNING if together else LOOP_WARNING
+    return template.format(
+        file=label_of(model.path),
+        line=line,
+        limit=f"{model.loop_limit:,}",
+        total=f"{LOOP_TOTAL:,}",
+        where="",
     )
 
 
 def loop_guard_prelude(loops: int, limit: int) -> str:
-    """The guard's counters and step function for `loops` loops, bound `limit`."""
+    """The guard's counters and step function for `loops` loops, bound `limit` each."""
     counters = [f"int lab_loop_{k} = 0;" for k in range(loops)]
-    return "\n".join([f"#define LAB_LOOP_LIMIT {int(limit)}", LOOP_GUARD, *counters])
+    bounds = [
+        f"#define LAB_LOOP_LIMIT {int(limit)}",
+        f"#define LAB_LOOP_TOTAL {LOOP_TOTAL}",
+        f"#define LAB_LOOP_TOTAL_FLAG {LOOP_TOTAL_FLAG}",
+    ]
+    return "\n".join([*bounds, LOOP_GUARD, *counters])
+
+
+def loop_cause(line: int) -> tuple[int, bool]:
+    """A guard flag's line, and whether the loops together ran out (else that loop alone)."""
+    return (line - LOOP_TOTAL_FLAG, True) if line >= LOOP_TOTAL_FLAG else (line, False)
 
 
 def uniform_declarations(model: Model, enums: dict[str, str] | None = None) -> list[str]:

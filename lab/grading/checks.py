@@ -16,7 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lab.glsl import SAMPLER_LINE_BASE, ShaderCompileError, label_of
+from lab.constants import LOOP_TOTAL
+from lab.glsl import SAMPLER_LINE_BASE, ShaderCompileError, label_of, loop_cause
 from lab.grading import tables
 from lab.grading.compare import (  # noqa: F401 - the names grading code has always used
     bad_values,
@@ -311,13 +312,18 @@ class Grader:
             stop, twin.loop_stopped = twin.loop_stopped, None
         if stop is not None:
             line, x, y = stop
+            line, together = loop_cause(line)
             if line >= SAMPLER_LINE_BASE:  # a loop in a sampling exercise's file
                 file, line = label_of(model.sampler_path), line - SAMPLER_LINE_BASE
             else:
                 file, line = wrapper_origin(exercise, code, label_of(model.path), line)
             where = stopped_where(check, x, y)
-            said = DIAGNOSIS["loop_stopped"].format(
-                file=file, line=line, limit=f"{model.loop_limit:,}", where=where
+            said = DIAGNOSIS["loops_total" if together else "loop_stopped"].format(
+                file=file,
+                line=line,
+                limit=f"{model.loop_limit:,}",
+                total=f"{LOOP_TOTAL:,}",
+                where=where,
             )
             return failed(check, said, loop_line=line)
         result = self.compare(check, expected, raw)

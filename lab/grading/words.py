@@ -18,6 +18,14 @@ DIAGNOSIS = {
         "{where} (counted over every pass of the loops around it); check its exit condition, "
         "or take fewer steps (on a GPU such a loop freezes the screen)"
     ),
+    # ... and for loops that together reached the guard's total ({total}: "65,000")
+    "loops_total": (
+        "{file}:{line}: your loops ran {total} passes in all by the loop at line {line}, at "
+        "{where} (every pass of every loop counts, a nested loop's at each pass of the loops "
+        "around it); the grader's software renderer (Mesa llvmpipe) ends them all there "
+        "without a word, so the lab stops them and the values are wrong: take fewer steps "
+        "(a coarser grid, fewer samples)"
+    ),
     "not_finite": (
         "some values are NaN or infinite — a division by zero or the pow/sqrt of a "
         "negative number; guard them with max(..., EPS)"

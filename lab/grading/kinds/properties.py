@@ -30,6 +30,7 @@ from lab.constants import LUMA
 from lab.glsl import CompileError, ShaderCompileError, label_of
 from lab.grading.kinds import CheckKind
 from lab.grading.result import CheckResult, failed, passed
+from lab.grading.rowpass import row_at, run_rows
 from lab.grading.spec import Check, ExerciseError
 from lab.grading.words import PROPERTIES as WORDS
 from lab.ibl.chisquare import random_frame
@@ -183,8 +184,6 @@ class PropertiesKind(CheckKind):
     # -- render --------------------------------------------------------------------------
     def render(self, renderer, model: Model, check: Check) -> np.ndarray:
         """(2, n): the program's values at the rows, and the grader's measurement there."""
-        import moderngl
-
         target = target_model(check.options["target"])
         program = linked(model, target)
         # The measurement first: the loop guard's flag is read from the last view rendered,
@@ -192,22 +191,14 @@ class PropertiesKind(CheckKind):
         truth = self.truth(renderer, target, check)
         rows = self.rows(check)
         X, Y, N = self.frame(check)
-        width = min(len(rows), 1024)
-        height = -(-len(rows) // width)
-        data = np.zeros((width * height, 4), np.float32)
-        data[: len(rows)] = np.radians(rows)
+        data = np.radians(rows).astype(np.float32)
         data[: self.albedo_count(check), 0] = -1.0
-        texture = renderer.ctx.texture((width, height), 4, data, dtype="f4")
-        texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        texture.use(0)
         uniforms = {"u_rows": 0, "u_X": tuple(X), "u_Y": tuple(Y), "u_N": tuple(N)}
         try:
-            fbo = renderer._run(program, VIEW, check.params, (width, height), uniforms)
-            got = renderer._read(fbo).reshape(-1, 4)[: len(rows), 0].astype(np.float64)
+            got = run_rows(renderer, program, VIEW, check.params, data, uniforms)[:, 0]
+            got = got.astype(np.float64)
         except ShaderCompileError as err:
             raise _from_target(err, model, target) from None
-        finally:
-            texture.release()
         return np.stack([got, truth])
 
     def truth(self, renderer, target: Model, check: Check) -> np.ndarray:
@@ -246,7 +237,7 @@ class PropertiesKind(CheckKind):
 
     def where(self, check: Check, x: int, y: int) -> str:
         rows = self.rows(check)
-        k = min(y * 1024 + x, len(rows) - 1)
+        k = min(row_at(x, y), len(rows) - 1)
         if k < self.albedo_count(check):
             return WORDS["albedo_at"].format(theta=rows[k, 2])
         return WORDS["pair_at"].format(**dict(zip(("tl", "pl", "tv", "pv"), rows[k], strict=True)))

@@ -24,9 +24,11 @@ import html
 
 import numpy as np
 
+from lab.glsl import ShaderCompileError
 from lab.grading.kinds import CheckKind
 from lab.grading.kinds.properties import PROTOTYPE, _from_target, linked, target_model
 from lab.grading.result import CheckResult, failed, passed
+from lab.grading.rowpass import row_at, run_rows
 from lab.grading.spec import Check, ExerciseError
 from lab.grading.words import SH as WORDS
 from lab.models import Model, model_names
@@ -87,33 +89,20 @@ class SHKind(CheckKind):
     # -- render --------------------------------------------------------------------------
     def render(self, renderer, model: Model, check: Check) -> np.ndarray:
         """(2, n, 3): the program's values at the rows, and the lab's there."""
-        import moderngl
-
         target = target_model(check.options["target"] or LINKED_FOR_BASIS)
         program = linked(model, target)
         rows = self.rows(check)
         # The lab's values first: the grader reads the loop guard of the last render.
         truth = self.truth(renderer, target, check)
-        width = min(len(rows), 1024)
-        height = -(-len(rows) // width)
-        data = np.zeros((width * height, 4), np.float32)
-        data[: len(rows), :2] = rows[:, :2]
-        data[: len(rows), 2:] = np.radians(rows[:, 2:])
-        texture = renderer.ctx.texture((width, height), 4, data, dtype="f4")
-        texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        texture.use(0)
+        data = np.zeros((len(rows), 4), np.float32)
+        data[:, :2] = rows[:, :2]
+        data[:, 2:] = np.radians(rows[:, 2:])
         uniforms = {"u_rows": 0, "u_project": int(self.projects(check))}
         try:
-            fbo = renderer._run(program, VIEW, check.params, (width, height), uniforms)
-            got = renderer._read(fbo).reshape(-1, 4)[: len(rows), :3].astype(np.float64)
-        except Exception as err:
-            from lab.glsl import ShaderCompileError
-
-            if isinstance(err, ShaderCompileError):
-                raise _from_target(err, model, target) from None
-            raise
-        finally:
-            texture.release()
+            out = run_rows(renderer, program, VIEW, check.params, data, uniforms)
+            got = out[:, :3].astype(np.float64)
+        except ShaderCompileError as err:
+            raise _from_target(err, model, target) from None
         return np.stack([got, truth])
 
     def truth(self, renderer, target: Model, check: Check) -> np.ndarray:
@@ -149,7 +138,7 @@ class SHKind(CheckKind):
 
     def where(self, check: Check, x: int, y: int) -> str:
         rows = self.rows(check)
-        l, m, theta, phi = rows[min(y * 1024 + x, len(rows) - 1)]  # noqa: E741
+        l, m, theta, phi = rows[min(row_at(x, y), len(rows) - 1)]  # noqa: E741
         said = {"l": int(l), "m": int(m), "theta": theta, "phi": phi}
         return WORDS["coefficient_at" if self.projects(check) else "basis_at"].format(**said)
 

@@ -44,10 +44,13 @@ const FORBIDDEN_DIRECTIVE = /^\s*#\s*(version|extension|include|line)\b/;
 const LOOP_HEAD = /\b(for|while)\s*\(/g;
 const COMMENTS = /\/\/[^\n]*|\/\*[\s\S]*?(?:\*\/|$(?![\s\S]))/g;
 const LOOP_GUARD = `int lab_loop_line = 0;
+int lab_loop_total = 0;
 bool lab_loop_step(inout int count, int line) {
     count += 1;
-    if (count <= LAB_LOOP_LIMIT) return true;
-    if (lab_loop_line == 0) lab_loop_line = line;
+    lab_loop_total += 1;
+    if (count <= LAB_LOOP_LIMIT && lab_loop_total <= LAB_LOOP_TOTAL) return true;
+    bool together = count <= LAB_LOOP_LIMIT;
+    if (lab_loop_line == 0) lab_loop_line = together ? line + LAB_LOOP_TOTAL_FLAG : line;
     return false;
 }`;
 const FLAG_OUTPUT = `#undef main
@@ -104,9 +107,11 @@ export function guardLoops(code) {
   return { code, lines };
 }
 
-export function loopGuardPrelude(loops, limit) {
+export function loopGuardPrelude(loops, limit, constants) {
   const counters = Array.from({ length: loops }, (_, k) => `int lab_loop_${k} = 0;`);
-  return [`#define LAB_LOOP_LIMIT ${Math.trunc(limit)}`, LOOP_GUARD, ...counters].join("\n");
+  const bounds = [`#define LAB_LOOP_LIMIT ${Math.trunc(limit)}`, `#define LAB_LOOP_TOTAL ${constants.LOOP_TOTAL}`,
+    `#define LAB_LOOP_TOTAL_FLAG ${constants.LOOP_TOTAL_FLAG}`];
+  return [...bounds, LOOP_GUARD, ...counters].join("\n");
 }
 
 // A view template's line naming a file (under shaders/) that goes in before it.
@@ -287,7 +292,7 @@ export function assembleFragment(model, view, files, { target = "300es", preambl
   const guarded = guardLoops(model.code);
   source.loops = guarded.lines.length; // none: the loop guard's flag stays 0, unread
   // An exercise's submission may allow more (its exercise.toml's loop_limit).
-  source.add(loopGuardPrelude(guarded.lines.length, model.loopLimit ?? constants.LOOP_LIMIT), "<loop guard>");
+  source.add(loopGuardPrelude(guarded.lines.length, model.loopLimit ?? constants.LOOP_LIMIT, constants), "<loop guard>");
   source.add(guarded.code, model.path);
   source.add(`const bool IS_DELTA = ${model.delta ? "true" : "false"};`, "<host>");
   source.add(

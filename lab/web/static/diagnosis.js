@@ -25,9 +25,12 @@ const rules = () => {
 /** The sentence `key` of lab/grading/words.py DIAGNOSIS, filled as Python fills it. */
 const say = (key, values = {}) => fill(rules().words[key], values);
 
-/** The grader's sentence for a loop its guard stopped (words.py DIAGNOSIS loop_stopped). */
-export function loopStopped(file, line, limit, where) {
-  return say("loop_stopped", { file, line, limit: Number(limit).toLocaleString("en-US"), where });
+/** The grader's sentence for a loop its guard stopped (words.py DIAGNOSIS loop_stopped), or
+ * for loops that together ran out of the guard's total (loops_total, flagged in the line). */
+export function loopStopped(file, line, limit, where, constants) {
+  const together = line >= constants.LOOP_TOTAL_FLAG;
+  return say(together ? "loops_total" : "loop_stopped", { file, line: together ? line - constants.LOOP_TOTAL_FLAG : line,
+    limit: Number(limit).toLocaleString("en-US"), total: constants.LOOP_TOTAL.toLocaleString("en-US"), where });
 }
 
 /** 'D', 'D and G', 'diffuse, D and G' (words.joined). */

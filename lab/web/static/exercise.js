@@ -147,7 +147,7 @@ function loopFailure(check, panel, where) {
   const line = panel.lastLoop.line;
   const file = panel.model.path.split("/").pop();
   const limit = panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT;
-  return { passed: false, message: loopStopped(file, line, limit, where) };
+  return { passed: false, message: loopStopped(file, line, limit, where, panel.lab.constants) };
 }
 
 /** stopped_where for a sphere pixel (x, y from the bottom, as read back). */
@@ -390,7 +390,7 @@ export class ExerciseMode {
         const out = await runSampled(panel, result.check, this.exercise);
         const limit = panel.model.loopLimit ?? panel.lab.constants.LOOP_LIMIT;
         Object.assign(result, out.loop ? { passed: false, message: loopStopped(this.exercise.student_file,
-          out.loop.line, limit, `sample ${out.loop.sample}`) } : out, { pending: false });
+          out.loop.line, limit, `sample ${out.loop.sample}`, panel.lab.constants) } : out, { pending: false });
       } catch (err) {
         if (!err.errors && !(err instanceof ModelError)) throw err;
         Object.assign(result, { passed: false, pending: false, message: `the shader does not compile: ${err.message.split("\n")[0]}` });

@@ -282,7 +282,7 @@ export function assembleBrdf(model, view, files, { target = "300es", preamble = 
   source.add(fileOn, "<host>");
   const guarded = guardLoops(code);
   source.loops = guarded.lines.length;
-  source.add(loopGuardPrelude(guarded.lines.length, constants.LOOP_LIMIT), "<loop guard>");
+  source.add(loopGuardPrelude(guarded.lines.length, constants.LOOP_LIMIT, constants), "<loop guard>");
   source.add(guarded.code, model.path, model.shaderLine);
   source.add(fileOff, "<host>");
   source.add(hostOn, "<host>");

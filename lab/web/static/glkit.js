@@ -1,6 +1,7 @@
 // WebGL2 helpers of the panels and views: model programs whose compile errors name the
 // model's own lines, uniforms set by type, float render targets and the loop guard's flag.
 import { finishProgram, floatTexture, startProgram, translateLog, vertexSource } from "./assemble.js";
+import { fill } from "./header.js";
 
 export const DISPLAY_SHADER = `#version 300 es
 precision highp float;
@@ -93,4 +94,15 @@ export function loopStop(gl, target, compiled) {
     if (flags[4 * i] > 0) return { line: Math.round(flags[4 * i]), x: i % target.width, y: Math.floor(i / target.width) };
   }
   return null;
+}
+
+/** The views' sentence for a loop the guard stopped (lab/constants.py LOOP_WARNING, or
+ * LOOP_TOTAL_WARNING where the loops together ran out: the line then carries the flag). */
+export function loopWarning(constants, model, stop, where) {
+  const together = stop.line >= constants.LOOP_TOTAL_FLAG;
+  return fill(together ? constants.LOOP_TOTAL_WARNING : constants.LOOP_WARNING, {
+    file: model.path, line: together ? stop.line - constants.LOOP_TOTAL_FLAG : stop.line,
+    limit: Number(model.loopLimit ?? constants.LOOP_LIMIT).toLocaleString("en-US"),
+    total: constants.LOOP_TOTAL.toLocaleString("en-US"), where,
+  });
 }

@@ -2,12 +2,12 @@
 // here, on the panel's WebGL2 context) and the page's other views, each made by its page
 // module (views/NAME.js) on the same context. What the panel does not own (removing it,
 // opening the editor, moving the light) it asks the page for with DOM events (ask()).
-import { ModelError, defaults, fill } from "./header.js";
+import { ModelError, defaults } from "./header.js";
 import { direction, planeOfIncidence } from "./geometry.js";
 import { assembleFragment, floatTexture, startProgram, vertexSource } from "./assemble.js";
 import { showOnly } from "./deck.js";
 import { $, el, setText, shortTitle, viewBox } from "./dom.js";
-import { CompileFailure, DISPLAY_SHADER, compile, finishModelProgram, floatTarget, loopStop, setUniform } from "./glkit.js";
+import { CompileFailure, DISPLAY_SHADER, compile, finishModelProgram, floatTarget, loopStop, loopWarning, setUniform } from "./glkit.js";
 import { paramControl } from "./controls.js";
 import { PALETTE } from "./state.js";
 
@@ -201,9 +201,7 @@ export class Panel {
    * directions); its values are wrong there and on a GPU it would freeze the screen. */
   showLoop(stop) {
     this.loop = stop;
-    const limit = Number(this.model.loopLimit ?? this.lab.constants.LOOP_LIMIT).toLocaleString("en-US");
-    const text = stop ? fill(this.lab.constants.LOOP_WARNING, { file: this.model.path, line: stop.line, limit,
-      where: ` at θo = ${stop.x - 90}° of the polar plot` }) : "";
+    const text = stop ? loopWarning(this.lab.constants, this.model, stop, ` at θo = ${stop.x - 90}° of the polar plot`) : "";
     setText(this.loopBox, text);
     this.loopBox.hidden = !text;
   }
