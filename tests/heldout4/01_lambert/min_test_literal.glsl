@@ -1,0 +1,15 @@
+// @model lambert
+// @title Exercise 01: Lambert, ideal diffuse reflection
+// @formula f_r = albedo / pi   (0 when L or V is below the surface)
+// @source J. H. Lambert, Photometria, 1760.
+// @param albedo color 0.8 0.8 0.8 | fraction of incident light reflected (diffuse albedo)
+
+const float ONE_OVER_PI = 0.3183098861837907;
+
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {
+    vec3 f = albedo * ONE_OVER_PI;
+    if (min(dot(N, L), dot(N, V)) > 0.0) {
+        return f;
+    }
+    return vec3(0.0);
+}
