@@ -8,7 +8,7 @@ import shutil
 
 import pytest
 
-from lab.web.browser import chromium_path
+from lab.web.browser import chromium_path, sibling
 
 pytestmark = pytest.mark.skipif(
     shutil.which("node") is None or shutil.which("npm") is None or chromium_path() is None,
@@ -168,7 +168,8 @@ def check_demo_fits(deck_page, iframe, frame, index: int, sliders: int = 3) -> N
 def test_pdf(deck, deck_page, tmp_path):
     from lab.web.slides import deck_info, pdf
 
-    out = pdf(deck, tmp_path / "handout.pdf", browser=deck_page.lab_browser)
+    with sibling(deck_page.lab_browser) as browser:  # not the other tests' WebGL contexts
+        out = pdf(deck, tmp_path / "handout.pdf", browser=browser)
     data = out.read_bytes()
     assert data.startswith(b"%PDF")
     pages = len(re.findall(rb"/Type\s*/Page[^s]", data))

@@ -135,13 +135,7 @@ EXERCISE: tuple[Key, ...] = (
         "with sampler_for: the student writes the model's Monte Carlo estimate of the "
         "reflection equation (estimate_radiance), not its sampler",
     ),
-    Key(
-        "loop_limit",
-        "integer",
-        LOOP_LIMIT,
-        "loop iterations per invocation (nested: all passes), at most 65,000; all loops "
-        "together stop at 65,400",
-    ),
+    Key("loop_limit", "integer", LOOP_LIMIT, "loop iterations per invocation (nested: all passes)"),
     Key("defaults", "table", {}, "check keys merged into every [[checks]] table"),
     Key("checks", "tables", REQUIRED, "the graded checks, one [[checks]] table each"),
 )

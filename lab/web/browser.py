@@ -51,3 +51,17 @@ def chromium(flags: tuple[str, ...] = ()) -> Iterator[object]:
             yield browser
         finally:
             browser.close()
+
+
+@contextlib.contextmanager
+def sibling(browser) -> Iterator[object]:
+    """Another Chromium launched by the Playwright that launched `browser` (one thread may
+    run one Playwright): its own processes, so the WebGL contexts of `browser`'s pages do
+    not count against its own (Chromium keeps only so many alive at once)."""
+    fresh = browser.browser_type.launch(
+        executable_path=chromium_path(), args=list(CHROMIUM_FLAGS), headless=True
+    )
+    try:
+        yield fresh
+    finally:
+        fresh.close()
